@@ -1,0 +1,58 @@
+// Mesh import (OBJ, PLY, STL, OFF and the rest of Assimp's formats) and streamed export of
+// tessellated meshes (PLY or OBJ, chosen by extension).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "model/mesh.hpp"
+
+namespace tessim {
+
+// Loads a triangle mesh. Faces are triangulated; identical positions are welded into one
+// vertex. Normals from the file are kept when present (averaged over the welded copies and
+// renormalized); otherwise area- and angle-weighted vertex normals are computed.
+// Throws InputError naming the file, the element and the reason for: unreadable or malformed
+// files, empty meshes, NaN/Inf coordinates, zero-length file normals, out-of-range indices.
+Mesh load_mesh(const std::filesystem::path& path);
+
+// Counts for `tessim info`.
+struct MeshStats {
+  std::size_t vertices = 0;
+  std::size_t triangles = 0;
+  std::size_t degenerate_triangles = 0;  // zero area (repeated vertices, collinear points)
+  std::size_t zero_length_edges = 0;
+  BoundingBox bbox;
+};
+MeshStats mesh_stats(const Mesh& mesh);
+
+// Streams a tessellated mesh to PLY (binary little-endian) or OBJ, chosen by the extension
+// of `path`; anything else is an InputError. Vertex and triangle totals must be known up front
+// (PLY's header needs them). Patches are appended one at a time; nothing reaches `path` until
+// finish() succeeds (the file is written to a temporary and renamed).
+class MeshWriter {
+ public:
+  MeshWriter(const std::filesystem::path& path, std::uint64_t total_vertices,
+             std::uint64_t total_triangles);
+  ~MeshWriter();
+  MeshWriter(const MeshWriter&) = delete;
+  MeshWriter& operator=(const MeshWriter&) = delete;
+
+  // Appends one patch of pattern_vertex_count(L) vertices in pattern order with
+  // pattern_triangles(L) as its topology (indices offset by the vertices written so far).
+  void add_patch(int L, const glm::dvec3* positions, const glm::dvec3* normals);
+  void finish();  // checks the totals, flushes and renames into place
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Returns true if `path` has an extension MeshWriter accepts (.ply or .obj, any case).
+bool is_supported_output(const std::filesystem::path& path);
+
+}  // namespace tessim

@@ -1,0 +1,49 @@
+// Float64 reference of PN triangles (SPEC §2, §3): control points, the four normal fields,
+// evaluation by Bernstein sums and by de Casteljau (counting INT operations).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "model/normal_mode.hpp"
+
+namespace tessim {
+
+// Control-net layout used by every form of the unit: a degree-d net is stored row by row,
+// rows of increasing k (power of v), within a row increasing j (power of u); i = d - j - k.
+//   cubic (10):    b300 b210 b120 b030 | b201 b111 b021 | b102 b012 | b003
+//   quadratic (6): n200 n110 n020 | n101 n011 | n002
+constexpr int net_index(int j, int k, int degree) { return k * (degree + 1) - k * (k - 1) / 2 + j; }
+
+struct PnInput {
+  std::array<glm::dvec3, 3> p;  // P1, P2, P3
+  std::array<glm::dvec3, 3> n;  // N1, N2, N3 (unit)
+};
+
+struct PnPatch {
+  std::array<glm::dvec3, 10> b;        // geometry, Bernstein form
+  std::array<glm::dvec3, 6> n_bern;    // quadratic normal net in Bernstein form (mid-edges = n_ij/2)
+  std::array<glm::dvec3, 3> n_corner;  // N1, N2, N3 (linear mode)
+  NormalMode mode = NormalMode::Quadratic;
+  int degenerate_edges = 0;            // zero-length edges that took the (Ni+Nj) fallback
+};
+
+struct PnVertex {
+  glm::dvec3 position;
+  glm::dvec3 normal;  // unit length (normalized field value)
+};
+
+// Builds the control nets of SPEC §2 for the chosen normal mode.
+PnPatch make_patch(const PnInput& in, NormalMode mode);
+
+// Direct evaluation by Bernstein sums at barycentric (w, u, v) = (1-u-v, u, v).
+PnVertex eval_bernstein(const PnPatch& patch, double u, double v);
+
+// Evaluation by de Casteljau. Adds the number of INT operations (barycentric combinations of
+// three points) it performs to *int_ops when given: 10 for the geometry, +4 quadratic/reflect,
+// +1 linear, +0 derivative (which reuses geometry levels 1-2 and takes a cross product).
+PnVertex eval_de_casteljau(const PnPatch& patch, double u, double v, std::uint64_t* int_ops = nullptr);
+
+}  // namespace tessim

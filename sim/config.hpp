@@ -1,0 +1,51 @@
+// Every parameter of the unit and its environment, in one type. JSON config files and the
+// command line both land here; validate() is the single place where ranges are checked.
+// docs/configuration.md lists the keys.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "model/normal_mode.hpp"
+#include "sim/fixed.hpp"
+
+namespace tessim::sim {
+
+enum class CpgMapping {
+  Dedicated,  // CPG is its own sequential datapath (the RTL's choice)
+  Gpe,        // CPG runs on the geometry engine's spare cycles (Chung & Kim)
+};
+
+struct UnitConfig {
+  NumberFormat format;
+  int int_blocks = 2;        // N: INT blocks in the TE
+  int int_latency = 1;       // cycles from issue to result visible to a dependent operation
+  int te_contexts = 4;       // vertices the TE keeps in flight (temporary-register sets)
+  int tri_fifo_depth = 2;    // input triangle FIFO in front of the CPG
+  int vtx_fifo_depth = 2;    // output vertex FIFO between the TE and the geometry engine
+  CpgMapping cpg_mapping = CpgMapping::Dedicated;
+  int cpg_gpe_cycles = 64;   // geometry-engine cycles CPG needs per triangle when mapped there
+  NormalMode normals = NormalMode::Quadratic;
+  int tess_factor = 4;       // L, uniform for every triangle of a run
+  int gpe_cycles = 8;        // K: the geometry engine accepts at most one vertex every K cycles
+  double gpe_stall_prob = 0.0;  // chance that a ready geometry engine stalls a cycle anyway
+  std::uint64_t seed = 1;    // seeds the geometry engine's random stalls
+
+  // Throws InputError(source, key, reason) on the first value out of range.
+  void validate(const std::string& source = "configuration") const;
+  bool operator==(const UnitConfig&) const = default;
+};
+
+// JSON: an object whose keys are the field names above (format fields flattened:
+// coord_int_bits, coord_frac_bits, bary_bits; enums as strings). Unknown keys, wrong types
+// and out-of-range values are InputErrors naming the file and the key.
+void apply_json(UnitConfig& cfg, const nlohmann::json& j, const std::string& source);
+UnitConfig load_config(const std::filesystem::path& path);  // defaults + file, validated
+nlohmann::json to_json(const UnitConfig& cfg);
+
+std::string to_string(CpgMapping m);
+
+}  // namespace tessim::sim

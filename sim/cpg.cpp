@@ -1,0 +1,125 @@
+#include "sim/cpg.hpp"
+
+#include <stdexcept>
+
+#include "model/pn.hpp"
+
+namespace tessim::sim {
+
+namespace {
+
+FxVec sub(const FxVec& a, const FxVec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+FxVec add(const FxVec& a, const FxVec& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+
+struct EdgeSlots {
+  int a, b;          // vertex indices: the edge runs from a to b
+  int near_a, near_b;  // geometry net slots of the tangent points near a and near b
+  int mid;           // normal net slot of the mid-edge normal
+};
+
+// Edge order of the CPG schedule: P1->P2, P2->P3, P3->P1.
+constexpr std::array<EdgeSlots, 3> kEdges{{
+    {0, 1, net_index(1, 0, 3), net_index(2, 0, 3), net_index(1, 0, 2)},  // b210 b120 n110
+    {1, 2, net_index(2, 1, 3), net_index(1, 2, 3), net_index(1, 1, 2)},  // b021 b012 n011
+    {2, 0, net_index(0, 2, 3), net_index(0, 1, 3), net_index(0, 1, 2)},  // b102 b201 n101
+}};
+
+// (2 Pn + Pf - w Nn) / 3 with w = (Pf - Pn).Nn, for the tangent point near Pn on edge Pn->Pf.
+// `w_ex` is the exact dot product (2F fraction bits) and `sign` its orientation: the edge
+// vector d is computed once per edge (b - a), so the far end uses -d.
+FxVec tangent_point(const FxVec& pn, const FxVec& pf, const FxVec& nn, i128 w_ex, int sign,
+                    const NumberFormat& f, std::uint8_t& flags) {
+  const int F = f.coord_frac_bits;
+  FxVec r{};
+  for (int c = 0; c < 3; ++c) {
+    const i128 chord = (i128{2} * pn[c] + pf[c]) << (2 * F);  // 3F fraction bits
+    const i128 num = chord - sign * w_ex * nn[c];
+    r[c] = mul_const(num, 3 * F, kOneThird, f, flags);
+  }
+  return r;
+}
+
+}  // namespace
+
+bool hardware_supports(NormalMode mode) { return mode != NormalMode::Derivative; }
+
+ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, const NumberFormat& f) {
+  if (!hardware_supports(mode)) throw std::invalid_argument("normal mode not implemented by the unit");
+  const int F = f.coord_frac_bits;
+  ControlPointsFx cp;
+  std::uint8_t& flags = cp.flags;
+
+  cp.b[net_index(0, 0, 3)] = tri.p[0];
+  cp.b[net_index(3, 0, 3)] = tri.p[1];
+  cp.b[net_index(0, 3, 3)] = tri.p[2];
+  const std::array<int, 3> corner_n{net_index(0, 0, 2), net_index(2, 0, 2), net_index(0, 2, 2)};
+  for (int v = 0; v < 3; ++v) {
+    for (int c = 0; c < 3; ++c) {
+      cp.n[corner_n[v]][c] = mode == NormalMode::Linear ? tri.n[v][c]
+                                                         : saturate(i128{2} * tri.n[v][c], f, flags);
+    }
+  }
+
+  i128 sum_t[3] = {0, 0, 0};
+  for (const EdgeSlots& e : kEdges) {
+    const FxVec& pa = tri.p[e.a];
+    const FxVec& pb = tri.p[e.b];
+    const FxVec& na = tri.n[e.a];
+    const FxVec& nb = tri.n[e.b];
+    const FxVec d = sub(pb, pa);  // exact, W+1 bits
+    const FxVec s = add(na, nb);  // exact, W+1 bits
+    const i128 wa_ex = dot_exact(d, na);
+    const i128 wb_ex = dot_exact(d, nb);
+    cp.b[e.near_a] = tangent_point(pa, pb, na, wa_ex, +1, f, flags);
+    cp.b[e.near_b] = tangent_point(pb, pa, nb, wb_ex, -1, f, flags);
+    for (int c = 0; c < 3; ++c) sum_t[c] += i128{cp.b[e.near_a][c]} + cp.b[e.near_b][c];
+
+    if (mode == NormalMode::Linear) continue;
+    // Mid-edge normal: m = s - k proj_d(s), proj_d(s)_c = d_c (d.s) / (d.d), per component so
+    // that every quotient is bounded by |s| whatever the edge length.
+    const i128 p_ex = dot_exact(d, s);
+    const i128 q_ex = dot_exact(d, d);
+    const int k = mode == NormalMode::Quadratic ? 2 : 4;
+    FxVec m{};
+    for (int c = 0; c < 3; ++c) {
+      const std::int64_t t = div_trunc(i128{d[c]} * p_ex, q_ex, f, flags);
+      m[c] = saturate(i128{s[c]} - i128{k} * t, f, flags);
+    }
+    if (mode == NormalMode::Reflect) {
+      cp.n[e.mid] = m;  // n_ij itself: twice its Bernstein value
+      continue;
+    }
+    const i128 mm_ex = dot_exact(m, m);
+    const i128 norm = static_cast<i128>(isqrt(static_cast<u128>(mm_ex)));  // F fraction bits
+    for (int c = 0; c < 3; ++c) cp.n[e.mid][c] = div_trunc(i128{m[c]} << F, norm, f, flags);
+  }
+
+  // b111 = E + (E - V)/2 = (3 sum(tangents) - 2 sum(corners)) / 12
+  for (int c = 0; c < 3; ++c) {
+    const i128 corners = i128{tri.p[0][c]} + tri.p[1][c] + tri.p[2][c];
+    cp.b[net_index(1, 1, 3)][c] = mul_const(3 * sum_t[c] - 2 * corners, F, kOneTwelfth, f, flags);
+  }
+  return cp;
+}
+
+int cpg_edge_cycles(NormalMode mode, const NumberFormat& f) {
+  const int W = f.coord_width();
+  // 6 cycles of geometry: d and s; three dot products (d.s, d.Na, d.Nb); two tangent points.
+  constexpr int kGeometry = 6;
+  switch (mode) {
+    case NormalMode::Linear: return kGeometry;
+    // + d.d, W-cycle division (3 lanes), m = s - k t
+    case NormalMode::Reflect: return kGeometry + 1 + W + 1;
+    // + m.m, W-cycle square root, W-cycle division (3 lanes)
+    case NormalMode::Quadratic: return kGeometry + 1 + W + 1 + 1 + W + W;
+    case NormalMode::Derivative: break;
+  }
+  throw std::invalid_argument("normal mode not implemented by the unit");
+}
+
+int cpg_cycles(NormalMode mode, const NumberFormat& f) {
+  // three edges, then one cycle for b111 and one for the write into the control-point buffer
+  return 3 * cpg_edge_cycles(mode, f) + 2;
+}
+
+}  // namespace tessim::sim

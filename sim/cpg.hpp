@@ -1,0 +1,50 @@
+// Control-point generation (CPG) in fixed point: the values the unit's CPG datapath produces
+// and the number of cycles it takes. The RTL's sequential CPG computes exactly these values,
+// operation for operation (docs/microarchitecture.md §CPG).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "model/normal_mode.hpp"
+#include "sim/fixed.hpp"
+
+namespace tessim::sim {
+
+// One input triangle as it crosses the unit's input stream.
+struct TriangleFx {
+  std::array<FxVec, 3> p{};  // P1, P2, P3
+  std::array<FxVec, 3> n{};  // N1, N2, N3 (unit length before quantisation)
+  int L = 1;                 // tessification factor 1..64
+  std::uint32_t id = 0;      // patch id, passed through to every output vertex
+};
+
+// Contents of one control-point buffer (net layout of model/pn.hpp, net_index()).
+// The normal net is stored at twice its Bernstein value (corners 2 Ni, mid-edges n_ij), which
+// keeps one more bit of the mid-edge normals; the output normal is therefore 2 n(u,v) (the
+// unit's normals are unnormalized; the consumer normalizes). In linear mode the corners hold
+// N1, N2, N3 and the mid-edge entries are zero.
+struct ControlPointsFx {
+  std::array<FxVec, 10> b{};
+  std::array<FxVec, 6> n{};
+  std::uint8_t flags = 0;  // FxFlag bits raised while computing this patch
+};
+
+// The normal modes the hardware implements. `derivative` needs a per-vertex cross product
+// (six multipliers behind the TE) whose precision falls as 1/L^2; it stays in the reference.
+bool hardware_supports(NormalMode mode);
+
+// Values of the dedicated CPG for one triangle.
+ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, const NumberFormat& fmt);
+
+// Cycles the dedicated CPG spends on one triangle, accept cycle excluded (see the doc):
+// 3 edges in sequence plus the centre point and the write.
+int cpg_edge_cycles(NormalMode mode, const NumberFormat& fmt);
+int cpg_cycles(NormalMode mode, const NumberFormat& fmt);
+
+// Mode encoding on the unit's mode input and in the RTL package.
+constexpr int mode_code(NormalMode m) {
+  return m == NormalMode::Quadratic ? 0 : m == NormalMode::Reflect ? 1 : 2;  // linear = 2
+}
+
+}  // namespace tessim::sim
