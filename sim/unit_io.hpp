@@ -1,0 +1,50 @@
+// The unit's boundary, shared by every implementation that runs in lock-step: the cycle
+// model (sim/unit.hpp) and the Verilated RTL (rtl/verilated/). Field meanings and bit widths:
+// docs/microarchitecture.md §3; counter definitions: §10.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "sim/cpg.hpp"
+#include "sim/fixed.hpp"
+
+namespace tessim::sim {
+
+constexpr int kMaxIntBlocks = 32;
+
+// One output vertex as it leaves the VTX FIFO.
+struct VertexFx {
+  FxVec pos{};
+  FxVec nrm{};            // unnormalized (2 n(u,v) for quadratic/reflect, linear field otherwise)
+  std::int64_t u = 0;     // barycentric weights, B fraction bits
+  std::int64_t v = 0;
+  int j = 0, k = 0, L = 0;  // lattice point and factor
+  std::uint32_t id = 0;   // patch id from the input triangle
+  bool last = false;      // last vertex of its patch
+  std::uint8_t flags = 0; // FxFlag bits of the patch's control points
+  bool operator==(const VertexFx&) const = default;
+};
+
+// Inputs of one cycle.
+struct UnitInputs {
+  bool tri_valid = false;
+  TriangleFx tri{};
+  bool vtx_ready = false;
+  bool cpg_step = true;  // gpe mapping only: the GPE has a spare cycle for CPG this cycle
+};
+
+// The counters both implementations keep (docs/microarchitecture.md §10), compared exactly
+// at the end of a co-simulation.
+struct UnitCounters {
+  std::uint64_t cycles = 0;
+  std::uint64_t triangles_in = 0;
+  std::uint64_t vertices_out = 0;
+  std::array<std::uint64_t, kMaxIntBlocks> int_busy{};
+  std::uint64_t te_busy = 0, te_blocked_by_gpe = 0, te_starved_by_cpg = 0, te_idle = 0,
+                te_pipeline = 0;
+  std::uint64_t cpg_busy = 0, cpg_blocked = 0, cpg_wait_gpe = 0, cpg_idle = 0;
+  bool operator==(const UnitCounters&) const = default;
+};
+
+}  // namespace tessim::sim
