@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs everything tessim needs from Debian's archive (idempotent: installs only what is
+# missing) and configures + builds the project into build/ with both cores.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  build-essential cmake pkg-config
+  libglm-dev                    # vector maths of the float reference
+  libassimp-dev assimp-testmodels  # mesh import; real test meshes in /usr/share/assimp/models
+  libopenimageio-dev            # PNG/EXR output of the renderer
+  libcli11-dev                  # command-line parsing
+  nlohmann-json3-dev            # config files, statistics, traces
+  libgtest-dev libgmock-dev     # unit tests
+  libbenchmark-dev              # microbenchmarks
+  verilator                     # RTL simulation (lock-step co-simulation)
+  yosys                         # synthesis for hardware cost
+  python3-matplotlib python3-numpy  # plots (run with /usr/bin/python3)
+  zlib1g-dev                    # FST waveforms
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${TESSIM_CMAKE_ARGS:-}
+cmake --build build -j2
