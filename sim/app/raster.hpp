@@ -1,0 +1,143 @@
+// A small software rasterizer for looking at meshes and tessellations: perspective camera framed
+// automatically on the geometry, z-buffer, per-pixel Phong shading of interpolated vertex
+// normals, two-sided lighting (meshes with inconsistent winding still shade correctly),
+// optional wireframe overlay and 2x2 supersampling. Images are written as PNG (8-bit sRGB) or
+// OpenEXR (half-float linear) through OpenImageIO, all-or-nothing.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace tessim::app {
+
+// Triangles to draw: one normal per position (need not be unit length). Winding may be
+// inconsistent. edge_flags is optional (empty: every edge is a primary edge); bit e of
+// edge_flags[t] marks the edge from corner e to corner (e+1)%3 of triangle t as primary
+// (drawn darker in the wireframe, e.g. the boundary of a tessellated patch); unmarked edges
+// are secondary (drawn lighter, e.g. edges inside a patch).
+struct RenderMesh {
+  std::vector<glm::dvec3> positions;
+  std::vector<glm::dvec3> normals;
+  std::vector<glm::uvec3> triangles;
+  std::vector<std::uint8_t> edge_flags;
+};
+
+// Checks that every index is in range and the arrays agree in size; throws InputError.
+void validate(const RenderMesh& mesh, std::string_view what);
+
+enum class UpAxis { Y, Z };
+
+struct ViewAngles {
+  double azimuth_deg = 35.0;    // around the up axis, from the front (+Z for Y-up, -Y for Z-up) towards +X
+  double elevation_deg = 25.0;  // above the horizontal plane, in [-90, 90]
+  UpAxis up = UpAxis::Y;
+};
+
+struct Camera {
+  glm::dvec3 eye{0.0, 0.0, 1.0};
+  glm::dvec3 target{0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fov_y_deg = 30.0;
+  double aspect = 1.0;  // width / height
+};
+
+// A camera looking from the given angles that frames all `points` (typically the vertices of
+// every mesh that will be drawn with it) inside the image with a small margin, centred.
+// Throws InputError for an elevation outside [-90, 90] or non-finite angles.
+Camera frame_camera(std::span<const glm::dvec3> points, const ViewAngles& view, int width, int height,
+                    double fov_y_deg = 30.0);
+
+struct RenderOptions {
+  int width = 1024;
+  int height = 768;
+  bool supersample = true;   // 2x2 samples per pixel, box-filtered
+  bool wireframe = false;
+  double wire_width_px = 1.0;          // primary edges, in output pixels
+  glm::dvec3 albedo{0.72, 0.74, 0.80};  // soft blue-grey
+  glm::dvec3 background{0.94, 0.94, 0.93};
+  glm::dvec3 wire_colour{0.10, 0.12, 0.16};
+  double wire_opacity = 0.8;            // primary edges; secondary edges get 40% of it
+  // Key light direction in view space (x right, y up, z towards the viewer): upper left front.
+  glm::dvec3 light_in_view{-0.45, 0.55, 0.70};
+  double ambient = 0.18;
+  double diffuse = 0.82;
+  double specular = 0.20;
+  double shininess = 40.0;
+};
+
+// Throws InputError unless 1 <= width, height <= kMaxImageSide.
+constexpr int kMaxImageSide = 8192;
+void validate(const RenderOptions& options);
+
+// Linear RGB, row-major, top row first.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgb;  // width * height * 3
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0.0f) {}
+  float* pixel(int x, int y) { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
+  const float* pixel(int x, int y) const { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
+};
+
+// Renders one mesh. Rows are rendered in bands, so memory beyond the meshes and the result is
+// bounded by the band size.
+class Renderer {
+ public:
+  Renderer(const RenderMesh& mesh, const Camera& camera, const RenderOptions& options);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Output rows [y_begin, y_end) as an image of options.width x (y_end - y_begin).
+  Image render_rows(int y_begin, int y_end) const;
+  Image render() const { return render_rows(0, height()); }
+  int width() const;
+  int height() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Convenience: frame, render, return.
+Image render(const RenderMesh& mesh, const Camera& camera, const RenderOptions& options);
+
+// Two panels of equal height next to each other, separated by a plain vertical bar.
+constexpr int kSeparatorWidth = 6;
+Image side_by_side(const Image& left, const Image& right, const glm::dvec3& separator_colour);
+
+// "WxH" (decimal, 1..kMaxImageSide each). Throws InputError naming `option`.
+glm::ivec2 parse_image_size(std::string_view text, std::string_view option = "--size");
+
+// True for .png and .exr (any case): the formats write_image and ImageFileWriter accept.
+bool is_supported_image(const std::filesystem::path& path);
+
+// Streams an image to a PNG or EXR file band by band; nothing appears at `path` until
+// finish() succeeds. The constructor throws InputError for an unsupported extension or an
+// output that cannot be opened.
+class ImageFileWriter {
+ public:
+  ImageFileWriter(const std::filesystem::path& path, int width, int height);
+  ~ImageFileWriter();
+  ImageFileWriter(const ImageFileWriter&) = delete;
+  ImageFileWriter& operator=(const ImageFileWriter&) = delete;
+
+  void write_rows(const Image& band);  // the next band.height rows, full width
+  void finish();                       // all rows written: close and move into place
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+void write_image(const Image& image, const std::filesystem::path& path);
+
+}  // namespace tessim::app
