@@ -34,7 +34,7 @@ FxVec tangent_point(const FxVec& pn, const FxVec& pf, const FxVec& nn, i128 w_ex
   for (int c = 0; c < 3; ++c) {
     const i128 chord = (i128{2} * pn[c] + pf[c]) << (2 * F);  // 3F fraction bits
     const i128 num = chord - sign * w_ex * nn[c];
-    r[c] = mul_const(num, 3 * F, kOneThird, f, flags);
+    r[c] = mul_const(num, 3 * F, one_third(f), f, flags);
   }
   return r;
 }
@@ -97,7 +97,7 @@ ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, c
   // b111 = E + (E - V)/2 = (3 sum(tangents) - 2 sum(corners)) / 12
   for (int c = 0; c < 3; ++c) {
     const i128 corners = i128{tri.p[0][c]} + tri.p[1][c] + tri.p[2][c];
-    cp.b[net_index(1, 1, 3)][c] = mul_const(3 * sum_t[c] - 2 * corners, F, kOneTwelfth, f, flags);
+    cp.b[net_index(1, 1, 3)][c] = mul_const(3 * sum_t[c] - 2 * corners, F, one_twelfth(f), f, flags);
   }
   return cp;
 }

@@ -81,16 +81,22 @@ inline u128 isqrt(u128 x) {
   return root;
 }
 
-// Multiplication by a constant fraction c/2^G applied to an exact value with `frac` fraction
-// bits, rounded half up to F bits and saturated: used for the divisions by 3 and 12 of the
-// control-point formulas (the hardware multiplies by a rounded reciprocal).
-constexpr int kConstFracBits = 24;  // G
-constexpr std::int64_t kOneThird = ((std::int64_t{1} << kConstFracBits) + 1) / 3;    // round(2^G/3)
-constexpr std::int64_t kOneTwelfth = ((std::int64_t{1} << kConstFracBits) + 6) / 12;  // round(2^G/12)
+// Multiplication by a constant fraction c / 2^G applied to an exact value with `frac` fraction
+// bits, rounded half up to F bits and saturated: the divisions by 3 and 12 of the control-point
+// formulas (the hardware multiplies by a rounded reciprocal). G = F + 8 keeps the error of the
+// rounded constant below 6 * 2^I / 256 LSB (docs/number-formats.md).
+constexpr int kConstGuardBits = 8;
+inline int const_frac_bits(const NumberFormat& f) { return f.coord_frac_bits + kConstGuardBits; }  // G
+inline std::int64_t one_third(const NumberFormat& f) {  // round(2^G / 3)
+  return ((std::int64_t{1} << const_frac_bits(f)) + 1) / 3;
+}
+inline std::int64_t one_twelfth(const NumberFormat& f) {  // round(2^G / 12)
+  return ((std::int64_t{1} << const_frac_bits(f)) + 6) / 12;
+}
 
 inline std::int64_t mul_const(i128 x, int frac, std::int64_t c, const NumberFormat& f,
                               std::uint8_t& flags) {
-  return saturate(round_shift(x * c, frac - f.coord_frac_bits + kConstFracBits), f, flags);
+  return saturate(round_shift(x * c, frac - f.coord_frac_bits + const_frac_bits(f)), f, flags);
 }
 
 // One INT operation (SPEC §3), per component: r = round((w A + u B + v C) / 2^B) with

@@ -1,0 +1,84 @@
+// Lock-step co-simulation of the cycle model (sim::Unit) and the Verilated RTL
+// (rtl::RtlUnit): the same triangle stream and the same seeded geometry-engine backpressure
+// drive both; every cycle their outputs are compared bit for bit, and every vertex the GPE
+// accepts is checked against the float reference. The first divergence stops the run; the
+// failing run is then replayed from reset with the RTL's FST waveform recording the window
+// before it, so passing runs pay nothing for waves (docs/verification.md).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/config.hpp"
+#include "sim/cpg.hpp"
+#include "sim/gpe.hpp"
+#include "sim/unit_io.hpp"
+
+namespace tessim::cosim {
+
+struct CosimOptions {
+  sim::UnitConfig unit;            // the configuration of both implementations
+  std::string variant;             // RTL build to run ("n2", "n2_verif", ...: rtl_variants())
+  std::uint64_t seed = 1;          // GPE backpressure and the RTL's X randomisation
+  int history = 8;                 // transactions printed before a divergence
+  int wave_window = 200;           // cycles of waveform before the divergence
+  std::filesystem::path wave;      // FST file written on divergence (empty: none)
+  std::vector<std::uint64_t> reset_at;  // cycles at which both are reset mid-stream
+  std::uint64_t hang_cycles = 100000;   // cycles without any transfer that count as a hang
+  bool check_reference = true;     // compare each vertex with the float reference
+};
+
+struct Divergence {
+  std::uint64_t cycle = 0;
+  std::string field;               // e.g. "vtx_pos[1]", "tri_ready", "counters.te_busy"
+  std::string expected;            // cycle model
+  std::string actual;              // RTL
+  std::uint32_t triangle = 0;      // patch id of the vertex concerned (or the last accepted)
+  std::vector<std::string> recent;  // the last transactions before it, oldest first
+};
+
+// Error of the unit against the float reference (positions relative to the bounding-box
+// diagonal of the stream, normals as angles in radians).
+struct ReferenceErrors {
+  std::uint64_t vertices = 0;
+  double max_position = 0.0, rms_position = 0.0;
+  double max_normal_angle = 0.0, rms_normal_angle = 0.0;
+  std::uint64_t beyond_bound = 0;  // vertices outside the derived bound
+  std::string worst;               // description of the worst vertex beyond the bound
+};
+
+struct CosimReport {
+  bool passed = false;
+  std::string variant;
+  std::uint64_t seed = 0;
+  std::uint64_t cycles = 0;
+  std::uint64_t triangles = 0;
+  std::uint64_t vertices = 0;
+  std::optional<Divergence> divergence;
+  bool counters_match = false;
+  sim::UnitCounters model_counters;
+  sim::UnitCounters rtl_counters;
+  sim::GpeStats gpe;
+  ReferenceErrors reference;
+  std::filesystem::path wave;      // written waveform, if any
+  bool hang = false;
+};
+
+// Runs the whole stream through both implementations. Throws InputError when the RTL variant
+// does not implement opts.unit (widths, N, latency, contexts, FIFO depths, CPG mapping).
+CosimReport run_cosim(const std::vector<sim::TriangleFx>& stream, const CosimOptions& opts);
+
+// One screen for a person: configuration, seed, outcome, counters, errors, divergence.
+std::string format_report(const CosimReport& r, const CosimOptions& opts);
+
+// A random triangle stream for verification: positions in [-0.9, 0.9]^3, normals near the
+// face normal, factors 1..max_L, and a share of degenerate triangles (repeated vertices,
+// collinear points, opposite normals).
+std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t seed,
+                                              const sim::NumberFormat& fmt, int max_L,
+                                              double degenerate_share = 0.1);
+
+}  // namespace tessim::cosim
