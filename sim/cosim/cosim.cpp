@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -176,8 +177,9 @@ sim::UnitCounters model_counters(const sim::UnitStats& s) {
   return c;
 }
 
-// The lock-step loop. With `wave_from` set, the RTL's waveform is recorded from that cycle on
-// and the loop stops `wave_tail` cycles after `stop_at` (the replay of a failing run).
+// The lock-step loop, ending at the end of the stream, at the first divergence or before cycle
+// `stop_at`. With `wave_from` set it is the replay of a failing run: outputs are not compared
+// and the RTL's waveform is recorded from that cycle on.
 struct LockstepRun {
   CosimReport report;
   std::uint64_t expected_vertices = 0;
@@ -225,8 +227,8 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   };
 
   for (;; ++cycle) {
+    if (cycle >= stop_at) break;
     if (wave_from && cycle == *wave_from) rtl.set_wave_enabled(true);
-    if (wave_from && cycle > stop_at) break;
     if (next_reset < resets.size() && cycle == resets[next_reset]) {
       // Mid-stream reset of both implementations: the stream starts again from the beginning.
       ++next_reset;
@@ -321,6 +323,11 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
 }  // namespace
 
 CosimReport run_cosim(const std::vector<sim::TriangleFx>& stream, const CosimOptions& opts) {
+  return run_cosim_until(stream, opts, std::numeric_limits<std::uint64_t>::max());
+}
+
+CosimReport run_cosim_until(const std::vector<sim::TriangleFx>& stream, const CosimOptions& opts,
+                            std::uint64_t stop_before) {
   opts.unit.validate("co-simulation configuration");
   if (opts.unit.cpg_mapping != sim::CpgMapping::Dedicated)
     throw InputError("co-simulation configuration", "cpg_mapping",
@@ -336,7 +343,7 @@ CosimReport run_cosim(const std::vector<sim::TriangleFx>& stream, const CosimOpt
   auto rtl = rtl::make_rtl_unit(opts.variant, opts.seed);
   rtl::check_config(*rtl, opts.unit);  // throws InputError naming the first parameter that differs
 
-  LockstepRun run = lockstep(stream, opts, *rtl, std::nullopt, 0);
+  LockstepRun run = lockstep(stream, opts, *rtl, std::nullopt, stop_before);
   CosimReport rep = std::move(run.report);
   if (rep.divergence && !opts.wave.empty()) {
     // Replay from reset with the waveform recording the window before the divergence.

@@ -70,6 +70,9 @@ struct CosimReport {
 // Runs the whole stream through both implementations. Throws InputError when the RTL variant
 // does not implement opts.unit (widths, N, latency, contexts, FIFO depths, CPG mapping).
 CosimReport run_cosim(const std::vector<sim::TriangleFx>& stream, const CosimOptions& opts);
+// The same, stopping before cycle `stop_before` (compares cycles 0 .. stop_before - 1).
+CosimReport run_cosim_until(const std::vector<sim::TriangleFx>& stream, const CosimOptions& opts,
+                            std::uint64_t stop_before);
 
 // One screen for a person: configuration, seed, outcome, counters, errors, divergence.
 std::string format_report(const CosimReport& r, const CosimOptions& opts);
