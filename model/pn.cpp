@@ -1,0 +1,260 @@
+#include "model/pn.hpp"
+
+#include <limits>
+
+namespace tessim {
+
+namespace {
+
+// A normal-field value shorter than this is treated as vanished. Fields are barycentric
+// blends of unit (or, for reflect, at most length-2) vectors, so their natural scale is 1.
+constexpr double kVanishingField = 1e-10;
+// A cross product a x b with |a x b| <= kParallel |a| |b| has no reliable direction.
+constexpr double kParallel = 1e-12;
+
+struct EdgeNormalResult {
+  glm::dvec3 n;     // n_ij in monomial form (Bernstein mid-edge point is n / 2)
+  bool degenerate;  // zero-length edge: took the (Ni + Nj) fallback
+};
+
+// Mid-edge normal of edge (Pi -> Pj) for the quadratic and reflect modes (SPEC §2).
+// Both formulas reflect s = Ni + Nj across the plane orthogonal to the edge (quadratic with
+// factor 2, reflect with factor 4, see docs/reference-model.md); the computation is symmetric
+// in the two ends, so both patches of a shared edge get the same value.
+EdgeNormalResult edge_normal(const glm::dvec3& pi, const glm::dvec3& pj, const glm::dvec3& ni,
+                             const glm::dvec3& nj, NormalMode mode) {
+  const glm::dvec3 edge = pj - pi;
+  const glm::dvec3 sum = ni + nj;
+  const double edge_len2 = glm::dot(edge, edge);
+  // Below DBL_MIN the squared length is zero or has underflowed: the edge has no direction,
+  // so there is nothing to reflect across and the mid-edge normal is along Ni + Nj. Quadratic
+  // normalizes it as usual; reflect keeps its unnormalized convention (|n_ij| = |Ni + Nj| for
+  // every edge), as the unit's control-point generation does (sim/cpg.cpp: m = s).
+  if (!(edge_len2 >= std::numeric_limits<double>::min())) {
+    if (mode == NormalMode::Reflect) return {sum, true};
+    const double len = glm::length(sum);
+    return {len > kVanishingField ? sum / len : glm::dvec3(0.0), true};
+  }
+  if (mode == NormalMode::Reflect) {
+    const double t = 4.0 * glm::dot(edge, sum) / edge_len2;
+    return {sum - t * edge, false};
+  }
+  const double v = 2.0 * glm::dot(edge, sum) / edge_len2;
+  const glm::dvec3 reflected = sum - v * edge;
+  const double len = glm::length(reflected);
+  // |reflected| = |Ni + Nj|: it vanishes only for opposite normals. The zero vector is then
+  // what the reflect formula gives as well; evaluation falls back if the field vanishes.
+  return {len > kVanishingField ? reflected / len : glm::dvec3(0.0), false};
+}
+
+bool is_zero_length(const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 e = b - a;
+  return !(glm::dot(e, e) >= std::numeric_limits<double>::min());
+}
+
+// Unit vector along a x b; false when a and b are (numerically) parallel or zero.
+bool unit_cross(const glm::dvec3& a, const glm::dvec3& b, glm::dvec3& out) {
+  const glm::dvec3 c = glm::cross(a, b);
+  const double len = glm::length(c);
+  if (!(len > kParallel * glm::length(a) * glm::length(b))) return false;
+  out = c / len;
+  return true;
+}
+
+bool unit_field(const glm::dvec3& f, glm::dvec3& out) {
+  const double len = glm::length(f);
+  if (!(len > kVanishingField)) return false;
+  out = f / len;
+  return true;
+}
+
+// The end of every fallback chain: the corner normal of largest barycentric weight
+// (first corner on ties). Input normals are unit, so this is always a valid normal.
+glm::dvec3 nearest_corner_normal(const PnPatch& patch, double w, double u, double v) {
+  if (w >= u && w >= v) return patch.n_corner[0];
+  if (u >= v) return patch.n_corner[1];
+  return patch.n_corner[2];
+}
+
+glm::dvec3 linear_field(const PnPatch& patch, double w, double u, double v) {
+  return w * patch.n_corner[0] + u * patch.n_corner[1] + v * patch.n_corner[2];
+}
+
+// Fallback chain shared by both evaluators (docs/reference-model.md):
+//   mode field -> surface normal -> linear field -> nearest corner normal.
+// `field` is the mode's field value (ignored for derivative), `du`/`dv` span the tangent plane.
+glm::dvec3 resolve_normal(const PnPatch& patch, const glm::dvec3& field, const glm::dvec3& du,
+                          const glm::dvec3& dv, double w, double u, double v) {
+  glm::dvec3 n;
+  if (patch.mode != NormalMode::Derivative && unit_field(field, n)) return n;
+  if (unit_cross(du, dv, n)) return n;
+  if (patch.mode != NormalMode::Linear && unit_field(linear_field(patch, w, u, v), n)) return n;
+  return nearest_corner_normal(patch, w, u, v);
+}
+
+// Bernstein basis of degree d at (w, u, v) for control point (i, j, k) = (d-j-k, j, k).
+double bernstein(int degree, int j, int k, double w, double u, double v) {
+  static constexpr double kFactorial[] = {1.0, 1.0, 2.0, 6.0};
+  const int i = degree - j - k;
+  double value = kFactorial[degree] / (kFactorial[i] * kFactorial[j] * kFactorial[k]);
+  for (int e = 0; e < i; ++e) value *= w;
+  for (int e = 0; e < j; ++e) value *= u;
+  for (int e = 0; e < k; ++e) value *= v;
+  return value;
+}
+
+// One INT operation of the unit: r = w A + u B + v C.
+glm::dvec3 int_op(double w, double u, double v, const glm::dvec3& a, const glm::dvec3& b,
+                  const glm::dvec3& c) {
+  return w * a + u * b + v * c;
+}
+
+// One de Casteljau level: degree d -> d - 1. Returns the number of INT operations.
+template <std::size_t In, std::size_t Out>
+int casteljau_level(const std::array<glm::dvec3, In>& cur, int degree, double w, double u, double v,
+                    std::array<glm::dvec3, Out>& next) {
+  int ops = 0;
+  for (int k = 0; k < degree; ++k) {
+    for (int j = 0; j + k < degree; ++j) {
+      next[net_index(j, k, degree - 1)] =
+          int_op(w, u, v, cur[net_index(j, k, degree)], cur[net_index(j + 1, k, degree)],
+                 cur[net_index(j, k + 1, degree)]);
+      ++ops;
+    }
+  }
+  return ops;
+}
+
+}  // namespace
+
+PnPatch make_patch(const PnInput& in, NormalMode mode) {
+  PnPatch patch;
+  patch.mode = mode;
+  const auto& P = in.p;
+  const auto& N = in.n;
+
+  // Geometry (SPEC §2). Tangent point nearest Pi on edge i -> j: (2Pi + Pj - w_ij Ni) / 3.
+  auto tangent = [&](int i, int j) {
+    const double wij = glm::dot(P[j] - P[i], N[i]);
+    return (2.0 * P[i] + P[j] - wij * N[i]) / 3.0;
+  };
+  auto& b = patch.b;
+  b[net_index(0, 0, 3)] = P[0];           // b300
+  b[net_index(3, 0, 3)] = P[1];           // b030
+  b[net_index(0, 3, 3)] = P[2];           // b003
+  b[net_index(1, 0, 3)] = tangent(0, 1);  // b210
+  b[net_index(2, 0, 3)] = tangent(1, 0);  // b120
+  b[net_index(2, 1, 3)] = tangent(1, 2);  // b021
+  b[net_index(1, 2, 3)] = tangent(2, 1);  // b012
+  b[net_index(0, 2, 3)] = tangent(2, 0);  // b102
+  b[net_index(0, 1, 3)] = tangent(0, 2);  // b201
+  const glm::dvec3 E = (b[net_index(1, 0, 3)] + b[net_index(2, 0, 3)] + b[net_index(2, 1, 3)] +
+                        b[net_index(1, 2, 3)] + b[net_index(0, 2, 3)] + b[net_index(0, 1, 3)]) /
+                       6.0;
+  const glm::dvec3 V = (P[0] + P[1] + P[2]) / 3.0;
+  b[net_index(1, 1, 3)] = E + (E - V) / 2.0;  // b111
+
+  patch.n_corner = N;
+
+  // Normal net in Bernstein form. Corners are Ni in every mode; mid-edges are n_ij / 2.
+  auto& n = patch.n_bern;
+  n[net_index(0, 0, 2)] = N[0];  // n200
+  n[net_index(2, 0, 2)] = N[1];  // n020
+  n[net_index(0, 2, 2)] = N[2];  // n002
+  struct Edge {
+    int i, j, index;
+  };
+  static constexpr Edge kEdges[] = {
+      {0, 1, net_index(1, 0, 2)},  // n110
+      {1, 2, net_index(1, 1, 2)},  // n011
+      {2, 0, net_index(0, 1, 2)},  // n101
+  };
+  for (const Edge& e : kEdges) {
+    if (mode == NormalMode::Quadratic || mode == NormalMode::Reflect) {
+      const EdgeNormalResult r = edge_normal(P[e.i], P[e.j], N[e.i], N[e.j], mode);
+      n[e.index] = r.n / 2.0;
+      if (r.degenerate) ++patch.degenerate_edges;
+    } else {
+      // Linear and derivative modes do not use this net; it holds the linear field raised to
+      // degree 2 (mid-edge (Ni + Nj) / 2), so evaluating it still gives a meaningful field.
+      n[e.index] = (N[e.i] + N[e.j]) / 2.0;
+      if (is_zero_length(P[e.i], P[e.j])) ++patch.degenerate_edges;
+    }
+  }
+  return patch;
+}
+
+PnVertex eval_bernstein(const PnPatch& patch, double u, double v) {
+  const double w = 1.0 - u - v;
+  PnVertex out;
+  out.position = glm::dvec3(0.0);
+  for (int k = 0; k <= 3; ++k)
+    for (int j = 0; j + k <= 3; ++j)
+      out.position += bernstein(3, j, k, w, u, v) * patch.b[net_index(j, k, 3)];
+
+  // Partial derivatives along u and v (w = 1 - u - v), each divided by 3:
+  // sum over the degree-2 basis of the forward differences of the cubic net.
+  glm::dvec3 du(0.0), dv(0.0);
+  for (int k = 0; k <= 2; ++k) {
+    for (int j = 0; j + k <= 2; ++j) {
+      const double basis = bernstein(2, j, k, w, u, v);
+      const glm::dvec3& base = patch.b[net_index(j, k, 3)];
+      du += basis * (patch.b[net_index(j + 1, k, 3)] - base);
+      dv += basis * (patch.b[net_index(j, k + 1, 3)] - base);
+    }
+  }
+
+  glm::dvec3 field(0.0);
+  if (patch.mode == NormalMode::Quadratic || patch.mode == NormalMode::Reflect) {
+    for (int k = 0; k <= 2; ++k)
+      for (int j = 0; j + k <= 2; ++j)
+        field += bernstein(2, j, k, w, u, v) * patch.n_bern[net_index(j, k, 2)];
+  } else if (patch.mode == NormalMode::Linear) {
+    field = linear_field(patch, w, u, v);
+  }
+  out.normal = resolve_normal(patch, field, du, dv, w, u, v);
+  return out;
+}
+
+PnVertex eval_de_casteljau(const PnPatch& patch, double u, double v, std::uint64_t* int_ops) {
+  const double w = 1.0 - u - v;
+  int ops = 0;
+
+  std::array<glm::dvec3, 6> level1;
+  std::array<glm::dvec3, 3> level2;
+  std::array<glm::dvec3, 1> level3;
+  ops += casteljau_level(patch.b, 3, w, u, v, level1);
+  ops += casteljau_level(level1, 2, w, u, v, level2);
+  ops += casteljau_level(level2, 1, w, u, v, level3);
+
+  // Level 2 is the tangent triangle q_w, q_u, q_v: (q_u - q_w) and (q_v - q_w) are the
+  // partial derivatives divided by 3.
+  const glm::dvec3& q_w = level2[net_index(0, 0, 1)];
+  const glm::dvec3& q_u = level2[net_index(1, 0, 1)];
+  const glm::dvec3& q_v = level2[net_index(0, 1, 1)];
+
+  glm::dvec3 field(0.0);
+  switch (patch.mode) {
+    case NormalMode::Quadratic:
+    case NormalMode::Reflect: {
+      std::array<glm::dvec3, 3> n1;
+      std::array<glm::dvec3, 1> n2;
+      ops += casteljau_level(patch.n_bern, 2, w, u, v, n1);
+      ops += casteljau_level(n1, 1, w, u, v, n2);
+      field = n2[0];
+      break;
+    }
+    case NormalMode::Linear:
+      field = int_op(w, u, v, patch.n_corner[0], patch.n_corner[1], patch.n_corner[2]);
+      ++ops;
+      break;
+    case NormalMode::Derivative:
+      break;
+  }
+  if (int_ops) *int_ops += static_cast<std::uint64_t>(ops);
+
+  // Fallbacks are numerics of the reference, not operations of the unit: not counted.
+  return {level3[0], resolve_normal(patch, field, q_u - q_w, q_v - q_w, w, u, v)};
+}
+
+}  // namespace tessim
