@@ -59,15 +59,15 @@ struct RenderOptions {
   bool supersample = true;   // 2x2 samples per pixel, box-filtered
   bool wireframe = false;
   double wire_width_px = 1.0;          // primary edges, in output pixels
-  glm::dvec3 albedo{0.72, 0.74, 0.80};  // soft blue-grey
+  glm::dvec3 albedo{0.42, 0.50, 0.66};  // soft blue
   glm::dvec3 background{0.94, 0.94, 0.93};
   glm::dvec3 wire_colour{0.10, 0.12, 0.16};
   double wire_opacity = 0.8;            // primary edges; secondary edges get 40% of it
   // Key light direction in view space (x right, y up, z towards the viewer): upper left front.
-  glm::dvec3 light_in_view{-0.45, 0.55, 0.70};
-  double ambient = 0.18;
+  glm::dvec3 light_in_view{-0.70, 0.60, 0.38};
+  double ambient = 0.16;
   double diffuse = 0.82;
-  double specular = 0.20;
+  double specular = 0.25;
   double shininess = 40.0;
 };
 
