@@ -1,0 +1,105 @@
+// Geometry processing engine (GPE) model of docs/microarchitecture.md §9: the consumer of the
+// unit's vertex stream. It is not part of the RTL; the same object drives vtx_ready of the
+// cycle model and, in co-simulation, of the Verilated RTL, so both see identical backpressure.
+#pragma once
+
+#include <cstdint>
+
+#include "sim/config.hpp"
+
+namespace tessim::sim {
+
+// splitmix64 (Steele, Lea, Flood 2014): the GPE's random source, advanced once per cycle.
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed = 0) : state_(seed) {}
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  // Uniform in [0, 1) with 53 bits: (next() >> 11) * 2^-53, exact in double.
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+ private:
+  std::uint64_t state_;
+};
+
+// Per-cycle classes of the GPE (doc §10), in priority order.
+enum class GpeClass : std::uint8_t { Busy, Stalled, Cpg, Starved };
+const char* to_string(GpeClass c);
+
+struct GpeStats {
+  std::uint64_t cycles = 0;
+  std::uint64_t vertices = 0;  // vertices accepted
+  std::uint64_t busy = 0;      // accepting or processing a vertex
+  std::uint64_t stalled = 0;   // random stall
+  std::uint64_t cpg = 0;       // spare cycle spent on a gpe-mapped CPG
+  std::uint64_t starved = 0;   // ready, no vertex to take
+  bool operator==(const GpeStats&) const = default;
+};
+
+// What the GPE does in one cycle.
+struct GpeCycle {
+  bool ready = false;     // drives vtx_ready of the unit
+  bool accepted = false;  // ready and the unit offered a vertex: transferred this cycle
+  bool spare = false;     // ready, no vertex offered: a spare cycle (drives cpg_step)
+  GpeClass cls = GpeClass::Starved;
+};
+
+class Gpe {
+ public:
+  Gpe(int cycles_per_vertex, double stall_prob, std::uint64_t seed);
+  explicit Gpe(const UnitConfig& cfg) : Gpe(cfg.gpe_cycles, cfg.gpe_stall_prob, cfg.seed) {}
+
+  void reset();  // back to the state after construction (generator re-seeded, stats cleared)
+
+  // One cycle. `vtx_valid` is the unit's (registered) vtx_valid output of this cycle;
+  // `cpg_computing` whether a gpe-mapped CPG is waiting for a compute step (only used to
+  // classify a spare cycle as `cpg` rather than `starved`). Advances the state to the end of
+  // the cycle and returns the values the GPE presents during it.
+  GpeCycle tick(bool vtx_valid, bool cpg_computing) {
+    const bool stall = rng_.uniform() < stall_prob_;
+    GpeCycle c;
+    c.ready = remaining_ == 0 && !stall;
+    c.accepted = c.ready && vtx_valid;
+    c.spare = c.ready && !vtx_valid;
+    ++stats_.cycles;
+    if (c.accepted) {
+      remaining_ = cycles_per_vertex_ - 1;
+      ++stats_.vertices;
+      c.cls = GpeClass::Busy;
+      ++stats_.busy;
+    } else if (remaining_ > 0) {
+      --remaining_;
+      c.cls = GpeClass::Busy;
+      ++stats_.busy;
+    } else if (stall) {
+      c.cls = GpeClass::Stalled;
+      ++stats_.stalled;
+    } else if (cpg_computing) {
+      c.cls = GpeClass::Cpg;
+      ++stats_.cpg;
+    } else {
+      c.cls = GpeClass::Starved;
+      ++stats_.starved;
+    }
+    return c;
+  }
+
+  const GpeStats& stats() const { return stats_; }
+  int cycles_per_vertex() const { return cycles_per_vertex_; }
+  double stall_prob() const { return stall_prob_; }
+  std::uint64_t seed() const { return seed_; }
+
+ private:
+  int cycles_per_vertex_;
+  double stall_prob_;
+  std::uint64_t seed_;
+  SplitMix64 rng_;
+  int remaining_ = 0;
+  GpeStats stats_;
+};
+
+}  // namespace tessim::sim

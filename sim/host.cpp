@@ -1,0 +1,69 @@
+#include "sim/host.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "model/error.hpp"
+
+namespace tessim::sim {
+
+HostScaling host_scaling(const Mesh& mesh) {
+  const BoundingBox box = bounding_box(mesh);
+  HostScaling s;
+  s.center = box.center();
+  const glm::dvec3 half = 0.5 * (box.hi - box.lo);
+  const double largest = std::max({half.x, half.y, half.z});
+  s.half_extent = largest > 0.0 ? largest : 1.0;
+  return s;
+}
+
+std::int64_t quantize(double x, const NumberFormat& fmt) {
+  return static_cast<std::int64_t>(std::floor(std::ldexp(x, fmt.coord_frac_bits) + 0.5));
+}
+
+FxVec quantize(const glm::dvec3& x, const NumberFormat& fmt) {
+  return {quantize(x.x, fmt), quantize(x.y, fmt), quantize(x.z, fmt)};
+}
+
+glm::dvec3 dequantize(const FxVec& x, const NumberFormat& fmt) {
+  const int F = fmt.coord_frac_bits;
+  return {std::ldexp(static_cast<double>(x[0]), -F), std::ldexp(static_cast<double>(x[1]), -F),
+          std::ldexp(static_cast<double>(x[2]), -F)};
+}
+
+TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
+                    const NumberFormat& fmt, int L) {
+  const glm::uvec3& t = mesh.triangles[index];
+  TriangleFx tri;
+  for (int v = 0; v < 3; ++v) {
+    tri.p[static_cast<std::size_t>(v)] = quantize(scaling.to_unit(mesh.positions[t[v]]), fmt);
+    tri.n[static_cast<std::size_t>(v)] = quantize(mesh.normals[t[v]], fmt);
+  }
+  tri.L = L;
+  tri.id = static_cast<std::uint32_t>(index);
+  return tri;
+}
+
+glm::dvec3 position_from_fixed(const FxVec& pos, const HostScaling& scaling, const NumberFormat& fmt) {
+  return scaling.from_unit(dequantize(pos, fmt));
+}
+
+glm::dvec3 normal_from_fixed(const FxVec& nrm, const NumberFormat& fmt) {
+  const glm::dvec3 n = dequantize(nrm, fmt);
+  const double len = glm::length(n);
+  return len > 0.0 ? n / len : glm::dvec3(0.0);
+}
+
+void check_patch_flags(const Mesh& mesh, std::uint32_t triangle, std::uint8_t flags,
+                       const NumberFormat& fmt) {
+  if ((flags & kFlagSaturated) == 0) return;
+  throw InputError(mesh.source.empty() ? std::string("mesh") : mesh.source,
+                   "triangle " + std::to_string(triangle),
+                   "the fixed-point widths cannot hold the mesh: a control point saturated the " +
+                       std::to_string(fmt.coord_width()) + "-bit coordinate format (I = " +
+                       std::to_string(fmt.coord_int_bits) + ", F = " +
+                       std::to_string(fmt.coord_frac_bits) + "); raise coord_int_bits");
+}
+
+}  // namespace tessim::sim

@@ -1,0 +1,51 @@
+// Host side of the unit: a float mesh into the unit's fixed-point input stream and the
+// fixed-point output stream back into the mesh's own coordinates (docs/number-formats.md §3).
+//
+// Scaling: positions are centred at the bounding-box centre and divided by the largest
+// half-extent, so every coordinate lies in [-1, 1]; normals are quantized as they are (unit
+// length, components in [-1, 1]). Quantization rounds to nearest, ties up: q = floor(x 2^F + 1/2).
+// The inverse multiplies back; output normals are normalized (the unit's are not).
+#pragma once
+
+#include <cstdint>
+#include <cstddef>
+
+#include <glm/glm.hpp>
+
+#include "model/mesh.hpp"
+#include "sim/cpg.hpp"
+#include "sim/fixed.hpp"
+
+namespace tessim::sim {
+
+struct HostScaling {
+  glm::dvec3 center{0.0};  // bounding-box centre of the mesh
+  double half_extent = 1.0;  // largest half-extent of the bounding box (1 for a point)
+
+  // Mesh coordinates -> unit coordinates in [-1, 1] and back.
+  glm::dvec3 to_unit(const glm::dvec3& p) const { return (p - center) / half_extent; }
+  glm::dvec3 from_unit(const glm::dvec3& q) const { return q * half_extent + center; }
+};
+
+HostScaling host_scaling(const Mesh& mesh);
+
+// Round to nearest (ties towards +inf) to F fraction bits. |x| must be well inside the range.
+std::int64_t quantize(double x, const NumberFormat& fmt);
+FxVec quantize(const glm::dvec3& x, const NumberFormat& fmt);
+glm::dvec3 dequantize(const FxVec& x, const NumberFormat& fmt);
+
+// Input triangle `index` of the mesh, scaled and quantized, with factor L and id = index.
+TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
+                    const NumberFormat& fmt, int L);
+
+// Output vertex data back in the mesh's coordinates. The normal is normalized; a vanished
+// normal (all components zero) is returned as the zero vector and reported by the caller.
+glm::dvec3 position_from_fixed(const FxVec& pos, const HostScaling& scaling, const NumberFormat& fmt);
+glm::dvec3 normal_from_fixed(const FxVec& nrm, const NumberFormat& fmt);
+
+// Throws InputError(mesh, "triangle <id>", ...) when a patch's control-point computation
+// saturated: the coordinate widths cannot hold the mesh.
+void check_patch_flags(const Mesh& mesh, std::uint32_t triangle, std::uint8_t flags,
+                       const NumberFormat& fmt);
+
+}  // namespace tessim::sim

@@ -1,0 +1,312 @@
+#include "sim/simulate.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "model/pattern.hpp"
+
+namespace tessim::sim {
+
+namespace {
+
+// A cycle count after which a run that has not accepted a vertex is an internal error (the
+// unit never deadlocks: every wait in doc §5-§9 ends by itself).
+std::uint64_t watchdog_cycles(const UnitConfig& cfg, int cpg_c) {
+  const double k = cfg.gpe_cycles / (1.0 - cfg.gpe_stall_prob);
+  return 1000 + 100 * static_cast<std::uint64_t>(cpg_c + k * (cfg.vtx_fifo_depth + 2) +
+                                                  16 * cfg.int_latency * cfg.te_contexts);
+}
+
+double ratio(std::uint64_t a, std::uint64_t b) { return b == 0 ? 0.0 : static_cast<double>(a) / b; }
+
+std::string percent(std::uint64_t part, std::uint64_t whole) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f%%", 100.0 * ratio(part, whole));
+  return buf;
+}
+
+}  // namespace
+
+SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SimResult r;
+  r.mesh = mesh.source;
+  r.config = cfg;
+  r.triangles = mesh.triangle_count();
+  r.scaling = host_scaling(mesh);
+
+  Unit unit(cfg);
+  Gpe gpe(cfg);
+  r.cpg_cycles = unit.cpg_cycles();
+  const NumberFormat& fmt = cfg.format;
+  const int L = cfg.tess_factor;
+  const int patch_vertices = pattern_vertex_count(L);
+  const std::uint64_t total = r.triangles * static_cast<std::uint64_t>(patch_vertices);
+  const std::uint64_t watchdog = watchdog_cycles(cfg, unit.cpg_cycles());
+
+  std::vector<glm::dvec3> patch_pos, patch_nrm;
+  if (hooks.on_patch) {
+    patch_pos.resize(static_cast<std::size_t>(patch_vertices));
+    patch_nrm.resize(static_cast<std::size_t>(patch_vertices));
+  }
+  std::vector<CycleObserver*> observers = hooks.observers;
+
+  UnitInputs in;
+  std::size_t next_triangle = 0;
+  if (r.triangles > 0) {
+    in.tri = to_fixed(mesh, 0, r.scaling, fmt, L);
+    in.tri_valid = true;
+  }
+
+  // Expected next vertex: the stream is checked as it goes (patch order, pattern order), so a
+  // model bug shows up as an internal error instead of a wrong mesh.
+  std::uint32_t expect_id = 0;
+  int expect_index = 0;
+  std::uint64_t accepted = 0;
+  std::uint64_t last_progress = 0;
+  std::uint64_t cycle = 0;
+
+  while (accepted < total) {
+    const bool tri_ready = unit.tri_ready();
+    const GpeCycle g = gpe.tick(unit.vtx_valid(), unit.cpg_computing());
+    in.vtx_ready = g.ready;
+    in.cpg_step = g.spare;
+    if (g.accepted) {
+      const VertexFx& v = unit.vtx();
+      if (v.id != expect_id || pattern_index(v.j, v.k, v.L) != expect_index || v.L != L ||
+          v.last != (expect_index == patch_vertices - 1))
+        throw std::logic_error("cycle model: vertex (" + std::to_string(v.id) + ", " +
+                               std::to_string(v.j) + ", " + std::to_string(v.k) +
+                               ") out of order at cycle " + std::to_string(cycle));
+      if (expect_index == 0) {
+        check_patch_flags(mesh, v.id, v.flags, fmt);
+        if (v.flags & kFlagDivByZero) ++r.degenerate_patches;
+      }
+      if (v.nrm[0] == 0 && v.nrm[1] == 0 && v.nrm[2] == 0) ++r.zero_normals;
+      if (hooks.on_vertex) hooks.on_vertex(v);
+      if (hooks.on_patch) {
+        patch_pos[static_cast<std::size_t>(expect_index)] = position_from_fixed(v.pos, r.scaling, fmt);
+        patch_nrm[static_cast<std::size_t>(expect_index)] = normal_from_fixed(v.nrm, fmt);
+        if (v.last) hooks.on_patch(PatchOut{v.id, L, patch_pos, patch_nrm});
+      }
+      if (v.last) {
+        ++expect_id;
+        expect_index = 0;
+      } else {
+        ++expect_index;
+      }
+      ++accepted;
+      last_progress = cycle;
+    }
+    const bool pushed = in.tri_valid && tri_ready;
+    unit.tick(in);
+    if (!observers.empty()) {
+      std::erase_if(observers, [&](CycleObserver* o) { return !o->on_cycle(unit, g); });
+    }
+    if (pushed) {
+      if (++next_triangle < r.triangles) in.tri = to_fixed(mesh, next_triangle, r.scaling, fmt, L);
+      else in.tri_valid = false;
+    }
+    ++cycle;
+    if (cycle - last_progress > watchdog)
+      throw std::logic_error("cycle model: no vertex accepted for " + std::to_string(watchdog) +
+                             " cycles (cycle " + std::to_string(cycle) + ")");
+  }
+
+  r.unit = unit.stats();
+  r.gpe = gpe.stats();
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+double throughput(const SimResult& r) { return ratio(r.unit.vertices_out, r.unit.cycles); }
+double cycles_per_vertex(const SimResult& r) { return ratio(r.unit.cycles, r.unit.vertices_out); }
+
+double int_utilisation(const SimResult& r) {
+  std::uint64_t busy = 0;
+  for (const IntBlockStats& b : r.unit.int_blocks) busy += b.busy;
+  return ratio(busy, r.unit.cycles * r.unit.int_blocks.size());
+}
+
+std::string bottleneck(const SimResult& r) {
+  const std::uint64_t cycles = r.unit.cycles;
+  if (cycles == 0) return "none (empty run)";
+  char buf[256];
+  const double gpe_busy = ratio(r.gpe.busy, cycles);
+  if (gpe_busy >= 0.9) {
+    std::snprintf(buf, sizeof buf,
+                  "GPE: busy %.1f%% of cycles (one vertex / %d cycles); TE blocked by GPE %.1f%%",
+                  100 * gpe_busy, r.config.gpe_cycles, 100 * ratio(r.unit.te.blocked_by_gpe, cycles));
+    return buf;
+  }
+  // Otherwise the TE does not keep the GPE busy; say why: no work from the CPG, INT blocks
+  // saturated, or dependences / INT latency with too few contexts.
+  const double starved = ratio(r.unit.te.starved_by_cpg, cycles);
+  const double util = int_utilisation(r);
+  const double pipeline = ratio(r.unit.te.pipeline, cycles);
+  if (starved >= util && starved >= pipeline) {
+    std::snprintf(buf, sizeof buf,
+                  "CPG: TE starved by CPG %.1f%% of cycles (%d cycles per triangle, %s mapping, "
+                  "%d vertices per patch)",
+                  100 * starved, r.cpg_cycles, to_string(r.config.cpg_mapping).c_str(),
+                  pattern_vertex_count(r.config.tess_factor));
+  } else if (util >= pipeline) {
+    std::snprintf(buf, sizeof buf, "INT blocks: utilisation %.1f%% (%d blocks)", 100 * util,
+                  r.config.int_blocks);
+  } else {
+    std::snprintf(buf, sizeof buf,
+                  "TE dependences: %.1f%% of cycles waiting on INT latency %d with %d contexts",
+                  100 * pipeline, r.config.int_latency, r.config.te_contexts);
+  }
+  return buf;
+}
+
+nlohmann::json stats_json(const SimResult& r) {
+  using nlohmann::json;
+  const UnitStats& u = r.unit;
+  json blocks = json::array();
+  std::uint64_t busy_total = 0;
+  for (const IntBlockStats& b : u.int_blocks) {
+    blocks.push_back({{"busy", b.busy}, {"idle", b.idle}, {"utilisation", ratio(b.busy, u.cycles)}});
+    busy_total += b.busy;
+  }
+  return {
+      {"mesh", r.mesh},
+      {"triangles", r.triangles},
+      {"config", to_json(r.config)},
+      {"cpg_cycles_per_triangle", r.cpg_cycles},
+      {"cycles", u.cycles},
+      {"triangles_in", u.triangles_in},
+      {"vertices_out", u.vertices_out},
+      {"throughput", throughput(r)},
+      {"cycles_per_vertex", cycles_per_vertex(r)},
+      {"int",
+       {{"blocks", blocks},
+        {"busy", busy_total},
+        {"ops_per_vertex", ratio(busy_total, u.vertices_out)},
+        {"utilisation", int_utilisation(r)}}},
+      {"te",
+       {{"busy", u.te.busy},
+        {"blocked_by_gpe", u.te.blocked_by_gpe},
+        {"starved_by_cpg", u.te.starved_by_cpg},
+        {"idle", u.te.idle},
+        {"pipeline", u.te.pipeline}}},
+      {"cpg",
+       {{"busy", u.cpg.busy}, {"blocked", u.cpg.blocked}, {"wait_gpe", u.cpg.wait_gpe}, {"idle", u.cpg.idle}}},
+      {"gpe",
+       {{"vertices", r.gpe.vertices},
+        {"busy", r.gpe.busy},
+        {"stalled", r.gpe.stalled},
+        {"cpg", r.gpe.cpg},
+        {"starved", r.gpe.starved}}},
+      {"stalls",
+       {{"te_starved_by_cpg", u.te.starved_by_cpg},
+        {"te_blocked_by_gpe", u.te.blocked_by_gpe},
+        {"gpe_starved_by_te", r.gpe.starved}}},
+      {"warnings", {{"degenerate_patches", r.degenerate_patches}, {"zero_normals", r.zero_normals}}},
+      {"bottleneck", bottleneck(r)},
+      {"wall_seconds", r.wall_seconds},
+  };
+}
+
+std::string summary(const SimResult& r) {
+  const UnitConfig& c = r.config;
+  const UnitStats& u = r.unit;
+  const std::uint64_t n = u.cycles;
+  std::ostringstream s;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "config   N=%d INT (latency %d)  V=%d contexts  L=%d  %s normals  CPG %s (%d cyc/tri)  "
+                "GPE K=%d stall %.2f seed %llu  Q%d.%d B=%d  FIFOs %d/%d\n",
+                c.int_blocks, c.int_latency, c.te_contexts, c.tess_factor,
+                std::string(to_string(c.normals)).c_str(), to_string(c.cpg_mapping).c_str(), r.cpg_cycles,
+                c.gpe_cycles, c.gpe_stall_prob, static_cast<unsigned long long>(c.seed),
+                c.format.coord_int_bits, c.format.coord_frac_bits, c.format.bary_bits, c.tri_fifo_depth,
+                c.vtx_fifo_depth);
+  s << buf;
+  std::snprintf(buf, sizeof buf, "mesh     %s  (%llu triangles)\n", r.mesh.c_str(),
+                static_cast<unsigned long long>(r.triangles));
+  s << buf;
+  std::snprintf(buf, sizeof buf,
+                "result   %llu cycles  %llu vertices  %.3f cycles/vertex  %.4f vertices/cycle\n",
+                static_cast<unsigned long long>(n), static_cast<unsigned long long>(u.vertices_out),
+                cycles_per_vertex(r), throughput(r));
+  s << buf;
+  s << "limit    " << bottleneck(r) << "\n";
+  s << "INT      utilisation " << percent(static_cast<std::uint64_t>(int_utilisation(r) * 1e6), 1000000)
+    << "  per block:";
+  for (std::size_t i = 0; i < u.int_blocks.size(); ++i) s << "  " << i << ":" << percent(u.int_blocks[i].busy, n);
+  s << "\n";
+  s << "TE       busy " << percent(u.te.busy, n) << "  pipeline " << percent(u.te.pipeline, n)
+    << "  blocked_by_gpe " << percent(u.te.blocked_by_gpe, n) << "  starved_by_cpg "
+    << percent(u.te.starved_by_cpg, n) << "  idle " << percent(u.te.idle, n) << "\n";
+  s << "CPG      busy " << percent(u.cpg.busy, n) << "  blocked " << percent(u.cpg.blocked, n)
+    << "  wait_gpe " << percent(u.cpg.wait_gpe, n) << "  idle " << percent(u.cpg.idle, n) << "\n";
+  s << "GPE      busy " << percent(r.gpe.busy, n) << "  stalled " << percent(r.gpe.stalled, n) << "  cpg "
+    << percent(r.gpe.cpg, n) << "  starved " << percent(r.gpe.starved, n) << "\n";
+  if (r.degenerate_patches > 0 || r.zero_normals > 0)
+    s << "warning  " << r.degenerate_patches << " patches hit a zero divisor (zero-length edge or "
+      << "vanishing mid-edge normal), " << r.zero_normals << " output normals vanished\n";
+  return s.str();
+}
+
+ScheduleRecorder::ScheduleRecorder(int table_cycles, std::size_t max_vertices)
+    : table_cycles_(table_cycles), max_vertices_(max_vertices) {
+  rows_.reserve(static_cast<std::size_t>(table_cycles));
+  retire_cycles_.reserve(max_vertices);
+}
+
+bool ScheduleRecorder::on_cycle(const Unit& unit, const GpeCycle&) {
+  const CycleActivity& a = unit.activity();
+  const bool started = !rows_.empty() || a.ops_issued > 0;
+  if (started && rows_.size() < static_cast<std::size_t>(table_cycles_)) {
+    Row row{a.cycle, {unit.issued_ops(), unit.issued_ops() + a.ops_issued}, a.allocated, a.retired,
+            a.allocated_vertex, a.retired_vertex, a.te};
+    rows_.push_back(std::move(row));
+  }
+  if (a.retired && retire_cycles_.size() < max_vertices_) retire_cycles_.push_back(a.cycle);
+  return rows_.size() < static_cast<std::size_t>(table_cycles_) || retire_cycles_.size() < max_vertices_;
+}
+
+double ScheduleRecorder::steady_cycles_per_vertex() const {
+  const std::size_t n = retire_cycles_.size();
+  if (n < 16) return 0.0;
+  const std::size_t lo = n / 2, hi = n - 1;
+  return static_cast<double>(retire_cycles_[hi] - retire_cycles_[lo]) / static_cast<double>(hi - lo);
+}
+
+std::string ScheduleRecorder::table(int int_blocks) const {
+  std::ostringstream s;
+  char buf[64];
+  s << "cycle ";
+  for (int b = 0; b < int_blocks; ++b) {
+    std::snprintf(buf, sizeof buf, " %-8s", ("INT" + std::to_string(b)).c_str());
+    s << buf;
+  }
+  s << " TE              events\n";
+  for (const Row& row : rows_) {
+    std::snprintf(buf, sizeof buf, "%5llu ", static_cast<unsigned long long>(row.cycle));
+    s << buf;
+    for (int b = 0; b < int_blocks; ++b) {
+      std::string cell = ".";
+      if (static_cast<std::size_t>(b) < row.ops.size())
+        cell = "v" + std::to_string(row.ops[static_cast<std::size_t>(b)].vertex) + "." +
+               std::to_string(row.ops[static_cast<std::size_t>(b)].op);
+      std::snprintf(buf, sizeof buf, " %-8s", cell.c_str());
+      s << buf;
+    }
+    std::snprintf(buf, sizeof buf, " %-15s", to_string(row.te));
+    s << buf;
+    if (row.allocated) s << " alloc v" << row.allocated_vertex;
+    if (row.retired) s << " retire v" << row.retired_vertex;
+    s << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace tessim::sim

@@ -1,0 +1,102 @@
+// Whole-mesh runs of the cycle model: triangles streamed one by one from the mesh into the
+// Unit, the Gpe consuming its vertices, results handed out vertex by vertex or patch by patch,
+// and the reports built on the statistics (stats JSON, human summary).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
+
+#include "model/mesh.hpp"
+#include "sim/config.hpp"
+#include "sim/gpe.hpp"
+#include "sim/host.hpp"
+#include "sim/unit.hpp"
+
+namespace tessim::sim {
+
+// Watches a run cycle by cycle (traces, schedule printouts). on_cycle() is called after every
+// cycle, with the unit's activity of that cycle, until it returns false.
+class CycleObserver {
+ public:
+  virtual ~CycleObserver() = default;
+  virtual bool on_cycle(const Unit& unit, const GpeCycle& gpe) = 0;
+};
+
+// One finished patch, converted back into the mesh's coordinates (normals normalized).
+struct PatchOut {
+  std::uint32_t triangle = 0;
+  int L = 1;
+  std::span<const glm::dvec3> positions;  // pattern order, pattern_vertex_count(L) entries
+  std::span<const glm::dvec3> normals;
+};
+
+struct SimHooks {
+  std::function<void(const VertexFx&)> on_vertex;  // every vertex the GPE accepts, in order
+  std::function<void(const PatchOut&)> on_patch;   // every patch once its last vertex is accepted
+  std::vector<CycleObserver*> observers;
+};
+
+struct SimResult {
+  std::string mesh;              // source of the mesh
+  UnitConfig config;
+  std::uint64_t triangles = 0;   // input triangles of the mesh
+  int cpg_cycles = 0;            // C of the configuration (doc §5)
+  UnitStats unit;
+  GpeStats gpe;
+  std::uint64_t degenerate_patches = 0;  // patches with the divide-by-zero flag
+  std::uint64_t zero_normals = 0;        // output vertices whose normal vanished
+  double wall_seconds = 0.0;
+  HostScaling scaling;
+};
+
+// Runs every triangle of `mesh` through the unit with a uniform factor cfg.tess_factor until
+// the GPE has accepted the last vertex. cfg must have passed validate(). Throws InputError if
+// a patch saturates (the widths cannot hold the mesh).
+SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks = {});
+
+// Figures derived from the statistics (docs/microarchitecture.md §10).
+double throughput(const SimResult& r);         // vertices per cycle
+double cycles_per_vertex(const SimResult& r);
+double int_utilisation(const SimResult& r);    // sum of INT busy / (N cycles)
+
+// Which block limits the run, as one line with the figure that shows it.
+std::string bottleneck(const SimResult& r);
+
+nlohmann::json stats_json(const SimResult& r);
+std::string summary(const SimResult& r);       // one screen for a hardware architect
+
+// Records the issue pattern of the first cycles and the retirement cycle of the first vertices:
+// the input of `tessim sim --schedule` and docs/schedule.md.
+class ScheduleRecorder : public CycleObserver {
+ public:
+  explicit ScheduleRecorder(int table_cycles = 48, std::size_t max_vertices = 8192);
+  bool on_cycle(const Unit& unit, const GpeCycle& gpe) override;
+
+  // Cycles per vertex between retirements in the second half of the recorded vertices
+  // (0 when fewer than 16 vertices retired).
+  double steady_cycles_per_vertex() const;
+  // The issue table: one row per cycle from the first issue, one column per INT block,
+  // cells "v<vertex>.<op>", plus allocation and retirement of the cycle.
+  std::string table(int int_blocks) const;
+
+ private:
+  struct Row {
+    std::uint64_t cycle;
+    std::vector<IssuedOp> ops;
+    bool allocated, retired;
+    std::uint64_t allocated_vertex, retired_vertex;
+    TeClass te;
+  };
+  int table_cycles_;
+  std::size_t max_vertices_;
+  std::vector<Row> rows_;
+  std::vector<std::uint64_t> retire_cycles_;
+};
+
+}  // namespace tessim::sim
