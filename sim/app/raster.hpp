@@ -87,8 +87,9 @@ struct Image {
   const float* pixel(int x, int y) const { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
 };
 
-// Renders one mesh. Rows are rendered in bands, so memory beyond the meshes and the result is
-// bounded by the band size.
+// Renders one mesh, which must outlive the renderer (it is referenced, not copied). Rows are
+// rasterized in bands, so memory beyond the mesh and the returned rows is bounded by the band
+// size whatever the image size.
 class Renderer {
  public:
   Renderer(const RenderMesh& mesh, const Camera& camera, const RenderOptions& options);
@@ -107,7 +108,7 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// Convenience: frame, render, return.
+// Renders the whole image in one call.
 Image render(const RenderMesh& mesh, const Camera& camera, const RenderOptions& options);
 
 // Two panels of equal height next to each other, separated by a plain vertical bar.
