@@ -276,7 +276,10 @@ bool ScheduleRecorder::on_cycle(const Unit& unit, const GpeCycle&) {
 double ScheduleRecorder::steady_cycles_per_vertex() const {
   const std::size_t n = retire_cycles_.size();
   if (n < 16) return 0.0;
-  const std::size_t lo = n / 2, hi = n - 1;
+  // A window of whole periods: 2520 is a multiple of every period of up to 10 vertices.
+  std::size_t window = (n / 2) / 2520 * 2520;
+  if (window == 0) window = n / 2;
+  const std::size_t hi = n - 1, lo = hi - window;
   return static_cast<double>(retire_cycles_[hi] - retire_cycles_[lo]) / static_cast<double>(hi - lo);
 }
 
@@ -285,7 +288,7 @@ std::string ScheduleRecorder::table(int int_blocks) const {
   char buf[64];
   s << "cycle ";
   for (int b = 0; b < int_blocks; ++b) {
-    std::snprintf(buf, sizeof buf, " %-8s", ("INT" + std::to_string(b)).c_str());
+    std::snprintf(buf, sizeof buf, " INT%-5d", b);
     s << buf;
   }
   s << " TE              events\n";
@@ -293,11 +296,12 @@ std::string ScheduleRecorder::table(int int_blocks) const {
     std::snprintf(buf, sizeof buf, "%5llu ", static_cast<unsigned long long>(row.cycle));
     s << buf;
     for (int b = 0; b < int_blocks; ++b) {
-      std::string cell = ".";
-      if (static_cast<std::size_t>(b) < row.ops.size())
-        cell = "v" + std::to_string(row.ops[static_cast<std::size_t>(b)].vertex) + "." +
-               std::to_string(row.ops[static_cast<std::size_t>(b)].op);
-      std::snprintf(buf, sizeof buf, " %-8s", cell.c_str());
+      char cell[32] = ".";
+      if (static_cast<std::size_t>(b) < row.ops.size()) {
+        const IssuedOp& op = row.ops[static_cast<std::size_t>(b)];
+        std::snprintf(cell, sizeof cell, "v%llu.%d", static_cast<unsigned long long>(op.vertex), op.op);
+      }
+      std::snprintf(buf, sizeof buf, " %-8s", cell);
       s << buf;
     }
     std::snprintf(buf, sizeof buf, " %-15s", to_string(row.te));

@@ -78,8 +78,9 @@ class ScheduleRecorder : public CycleObserver {
   explicit ScheduleRecorder(int table_cycles = 48, std::size_t max_vertices = 8192);
   bool on_cycle(const Unit& unit, const GpeCycle& gpe) override;
 
-  // Cycles per vertex between retirements in the second half of the recorded vertices
-  // (0 when fewer than 16 vertices retired).
+  // Cycles per vertex between retirements over the last whole multiple of 2520 vertices within
+  // the second half of the recorded vertices (so any schedule period of up to 10 vertices
+  // averages exactly); 0 when fewer than 16 vertices retired.
   double steady_cycles_per_vertex() const;
   // The issue table: one row per cycle from the first issue, one column per INT block,
   // cells "v<vertex>.<op>", plus allocation and retirement of the cycle.
