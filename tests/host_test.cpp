@@ -307,6 +307,8 @@ TEST(RealMeshError, NarrowFormatStillWithinBound) {
   cfg.validate("test");
   const ErrorStats st = measure_errors(mesh, cfg);
   EXPECT_EQ(st.beyond, 0u) << st.worst;
+  std::printf("[ errors   ] Wuson L=6 quadratic, Q3.12 B=9: position max %.3e (bound up to %.3e), normal angle max %.3e rad\n",
+              st.max_pos, st.max_pos_bound, st.max_angle);
   // Fewer bits, larger errors: the bound is not vacuous.
   EXPECT_GT(st.max_pos, 1e-5);
 }
