@@ -510,5 +510,23 @@ TEST(Tessellate, AdjacentPatchesShareEdgePointsOnARealMesh) {
   }
 }
 
+TEST(Tessellate, RealMeshWithDegenerateTrianglesStaysFinite) {
+  // spider.obj has repeated vertices in some faces: zero-length edges and zero-area triangles.
+  const std::filesystem::path file = "/usr/share/assimp/models/OBJ/spider.obj";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " not installed (assimp-testmodels)";
+  const Mesh mesh = load_mesh(file);
+  for (NormalMode mode : kAllModes) {
+    std::size_t bad = 0;
+    const TessellationSummary s = tessellate_mesh(mesh, 3, mode, [&](const PatchView& view) {
+      for (std::size_t i = 0; i < view.positions.size(); ++i)
+        if (!is_finite(view.positions[i]) || !(std::abs(glm::length(view.normals[i]) - 1.0) <= 1e-14)) ++bad;
+    });
+    EXPECT_EQ(bad, 0u) << to_string(mode);
+    EXPECT_GT(s.degenerate_edges, 0u) << to_string(mode);
+    EXPECT_GT(s.degenerate_triangles, 0u) << to_string(mode);
+    EXPECT_EQ(s.patches, mesh.triangle_count());
+  }
+}
+
 }  // namespace
 }  // namespace tessim
