@@ -144,24 +144,29 @@ std::string bottleneck(const SimResult& r) {
                   100 * gpe_busy, r.config.gpe_cycles, 100 * ratio(r.unit.te.blocked_by_gpe, cycles));
     return buf;
   }
-  // Otherwise the TE does not keep the GPE busy; say why: no work from the CPG, INT blocks
-  // saturated, or dependences / INT latency with too few contexts.
-  const double starved = ratio(r.unit.te.starved_by_cpg, cycles);
+  // Otherwise the TE does not keep the GPE busy; say why: INT blocks saturated, no work from
+  // the CPG, or dependences and INT latency with too few contexts.
   const double util = int_utilisation(r);
+  const double starved = ratio(r.unit.te.starved_by_cpg, cycles);
   const double pipeline = ratio(r.unit.te.pipeline, cycles);
-  if (starved >= util && starved >= pipeline) {
+  if (util >= 0.9) {
+    std::snprintf(buf, sizeof buf, "INT blocks: utilisation %.1f%% (%d blocks, %.2f cycles/vertex at best)",
+                  100 * util, r.config.int_blocks,
+                  (r.config.normals == NormalMode::Linear ? 11.0 : 14.0) / r.config.int_blocks);
+  } else if (starved >= 0.1 && starved >= pipeline) {
     std::snprintf(buf, sizeof buf,
-                  "CPG: TE starved by CPG %.1f%% of cycles (%d cycles per triangle, %s mapping, "
+                  "CPG: TE starved by CPG %.1f%% of cycles (%s mapping, C = %d cycles per triangle, "
                   "%d vertices per patch)",
-                  100 * starved, r.cpg_cycles, to_string(r.config.cpg_mapping).c_str(),
+                  100 * starved, to_string(r.config.cpg_mapping).c_str(), r.cpg_cycles,
                   pattern_vertex_count(r.config.tess_factor));
-  } else if (util >= pipeline) {
-    std::snprintf(buf, sizeof buf, "INT blocks: utilisation %.1f%% (%d blocks)", 100 * util,
-                  r.config.int_blocks);
-  } else {
+  } else if (pipeline >= 0.1) {
     std::snprintf(buf, sizeof buf,
-                  "TE dependences: %.1f%% of cycles waiting on INT latency %d with %d contexts",
-                  100 * pipeline, r.config.int_latency, r.config.te_contexts);
+                  "TE dependences: %.1f%% of cycles waiting on results (INT latency %d, %d contexts), "
+                  "INT utilisation %.1f%%",
+                  100 * pipeline, r.config.int_latency, r.config.te_contexts, 100 * util);
+  } else {
+    std::snprintf(buf, sizeof buf, "none dominant: GPE busy %.1f%%, INT utilisation %.1f%%, TE starved by CPG %.1f%%",
+                  100 * gpe_busy, 100 * util, 100 * starved);
   }
   return buf;
 }
@@ -221,16 +226,17 @@ std::string summary(const SimResult& r) {
   std::ostringstream s;
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "config   N=%d INT (latency %d)  V=%d contexts  L=%d  %s normals  CPG %s (%d cyc/tri)  "
-                "GPE K=%d stall %.2f seed %llu  Q%d.%d B=%d  FIFOs %d/%d\n",
-                c.int_blocks, c.int_latency, c.te_contexts, c.tess_factor,
-                std::string(to_string(c.normals)).c_str(), to_string(c.cpg_mapping).c_str(), r.cpg_cycles,
-                c.gpe_cycles, c.gpe_stall_prob, static_cast<unsigned long long>(c.seed),
-                c.format.coord_int_bits, c.format.coord_frac_bits, c.format.bary_bits, c.tri_fifo_depth,
-                c.vtx_fifo_depth);
+                "unit     N=%d INT (latency %d), V=%d contexts, FIFOs tri %d / vtx %d, Q%d.%d (W=%d) B=%d, "
+                "CPG %s: %d cycles/triangle\n",
+                c.int_blocks, c.int_latency, c.te_contexts, c.tri_fifo_depth, c.vtx_fifo_depth,
+                c.format.coord_int_bits, c.format.coord_frac_bits, c.format.coord_width(), c.format.bary_bits,
+                to_string(c.cpg_mapping).c_str(), r.cpg_cycles);
   s << buf;
-  std::snprintf(buf, sizeof buf, "mesh     %s  (%llu triangles)\n", r.mesh.c_str(),
-                static_cast<unsigned long long>(r.triangles));
+  std::snprintf(buf, sizeof buf,
+                "workload %s: %llu triangles, L=%d (%d vertices/patch), %s normals; GPE K=%d, stall %.2f, seed %llu\n",
+                r.mesh.c_str(), static_cast<unsigned long long>(r.triangles), c.tess_factor,
+                pattern_vertex_count(c.tess_factor), std::string(to_string(c.normals)).c_str(), c.gpe_cycles,
+                c.gpe_stall_prob, static_cast<unsigned long long>(c.seed));
   s << buf;
   std::snprintf(buf, sizeof buf,
                 "result   %llu cycles  %llu vertices  %.3f cycles/vertex  %.4f vertices/cycle\n",

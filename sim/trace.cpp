@@ -16,7 +16,7 @@ constexpr int kTidGpe = 1002;
 
 TraceWriter::TraceWriter(const std::filesystem::path& path, int int_blocks, std::uint64_t window_cycles)
     : out_(path), int_blocks_(int_blocks), window_(window_cycles) {
-  out_.stream() << "{\"displayTimeUnit\":\"ns\",\"otherData\":{\"time_unit\":\"1 us = 1 cycle\"},"
+  out_.stream() << "{\"otherData\":{\"time_unit\":\"1 us = 1 cycle\"},"
                    "\"traceEvents\":[\n";
   char buf[160];
   std::snprintf(buf, sizeof buf,
