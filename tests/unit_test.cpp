@@ -681,6 +681,29 @@ TEST(SimCli, FlagsOverrideConfigAndStatsFileHasEverything) {
   std::filesystem::remove(stats);
 }
 
+TEST(SimCli, WritesTheTessellatedMeshAndNothingOnError) {
+  const auto out = temp_file("out.ply");
+  const CommandResult r = run_tessim(std::string("sim ") + kWuson + " -L 3 --gpe-cycles 1 -o " + out.string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Mesh in = load_mesh(kWuson);
+  const Mesh result = load_mesh(out);
+  EXPECT_EQ(result.triangle_count(), in.triangle_count() * 9);
+  // In the mesh's own coordinates: the same bounding box up to the PN bulge and the rounding.
+  const BoundingBox a = bounding_box(in), b = bounding_box(result);
+  EXPECT_LT(glm::length(a.lo - b.lo) + glm::length(a.hi - b.hi), 0.05 * a.diagonal());
+  std::filesystem::remove(out);
+
+  // Widths that cannot hold the mesh: an error naming the mesh, and no file.
+  const auto cfg = temp_file("narrow.json");
+  std::ofstream(cfg) << R"({"coord_int_bits": 1})";
+  const CommandResult bad = run_tessim(std::string("sim ") + kWuson + " --config " + cfg.string() + " -o " + out.string());
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("Wuson.ply"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("cannot hold"), std::string::npos) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  std::filesystem::remove(cfg);
+}
+
 TEST(SimCli, ScheduleAndTrace) {
   const auto trace = temp_file("trace.json");
   const CommandResult r = run_tessim(std::string("sim ") + kWuson + " -L 2 --gpe-cycles 1 --int 3 --schedule --trace " +
