@@ -132,6 +132,7 @@ void Unit::reset() {
   ctx_head_ = ctx_count_ = 0;
   next_seq_ = 0;
   for (int& count : pending_count_) count = 0;
+  due_slot_ = 0;
   vtx_head_ = vtx_count_ = 0;
   stats_ = UnitStats{};
   stats_.int_blocks.assign(static_cast<std::size_t>(n_blocks_), IntBlockStats{});
@@ -154,8 +155,8 @@ void Unit::issue(Context& ctx, int context_slot, int op, int block) {
       int_op(ctx.w, ctx.u, ctx.v, base[src[0].space][src[0].index], base[src[1].space][src[1].index],
              base[src[2].space][src[2].index], cfg_.format.bary_bits);
   ctx.issued |= bit(op);
-  const std::uint64_t due = stats_.cycles + static_cast<std::uint64_t>(latency_ - 1);
-  const int slot = static_cast<int>(due % static_cast<std::uint64_t>(latency_));
+  // Due at the end of cycle t + Λ - 1, whose slot is (t + Λ - 1) mod Λ = (t - 1) mod Λ.
+  const int slot = due_slot_ == 0 ? latency_ - 1 : due_slot_ - 1;
   pending_[static_cast<std::size_t>(slot)][static_cast<std::size_t>(pending_count_[static_cast<std::size_t>(slot)]++)] =
       Completion{static_cast<std::uint8_t>(context_slot), bit(op)};
   issued_[static_cast<std::size_t>(block)] = IssuedOp{block, context_slot, op, ctx.seq};
@@ -283,11 +284,12 @@ void Unit::tick(const UnitInputs& in) {
 
   // INT results due at the end of this cycle (issued Λ - 1 cycles ago, or just now for Λ = 1).
   {
-    const std::size_t slot = static_cast<std::size_t>(cycle % static_cast<std::uint64_t>(latency_));
+    const std::size_t slot = static_cast<std::size_t>(due_slot_);
     std::vector<Completion>& due = pending_[slot];
     for (int i = 0; i < pending_count_[slot]; ++i)
       contexts_[due[static_cast<std::size_t>(i)].context].done |= due[static_cast<std::size_t>(i)].bit;
     pending_count_[slot] = 0;
+    due_slot_ = due_slot_ + 1 == latency_ ? 0 : due_slot_ + 1;
   }
 
   // Allocation of the next domain point into the tail context.

@@ -177,6 +177,7 @@ class Unit {
   // INT pipelines: completions due at the end of cycle c live in slot c mod latency.
   std::vector<std::vector<Completion>> pending_;
   std::vector<int> pending_count_;
+  int due_slot_ = 0;  // slot of the current cycle: cycles mod latency
   // VTX FIFO
   std::vector<VertexFx> vtx_fifo_;
   int vtx_head_ = 0, vtx_count_ = 0;
