@@ -137,9 +137,9 @@ void run_sim(const SimArgs& a, const FlagOptions& f) {
   if (schedule) {
     std::cout << "\nissue schedule (v<vertex>.<op>, first cycles from the first issue):\n"
               << schedule->table(cfg.int_blocks);
-    std::printf("steady state: %.3f cycles per vertex (retirement interval over the second half "
-                "of the first %zu vertices)\n",
-                schedule->steady_cycles_per_vertex(), static_cast<std::size_t>(8192));
+    std::printf("steady state: %.3f cycles per vertex (retirement interval over 2520-vertex "
+                "periods of the first 8192 vertices, docs/schedule.md)\n",
+                schedule->steady_cycles_per_vertex());
   }
 }
 
