@@ -18,6 +18,27 @@ HostScaling host_scaling(const Mesh& mesh) {
   return s;
 }
 
+void check_convertible(const Mesh& mesh) {
+  const std::string file = mesh.source.empty() ? std::string("mesh") : mesh.source;
+  if (mesh.normals.size() != mesh.positions.size())
+    throw InputError(file, "normals",
+                     std::to_string(mesh.normals.size()) + " normals for " +
+                         std::to_string(mesh.positions.size()) + " positions");
+  auto finite = [](const glm::dvec3& x) { return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z); };
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    if (!finite(mesh.positions[i]))
+      throw InputError(file, "vertex " + std::to_string(i), "position is NaN or infinite");
+    const double len = glm::length(mesh.normals[i]);
+    if (!(std::abs(len - 1.0) <= 1e-3))
+      throw InputError(file, "vertex " + std::to_string(i), "normal is not of unit length (" + std::to_string(len) + ")");
+  }
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c)
+      if (mesh.triangles[t][c] >= mesh.positions.size())
+        throw InputError(file, "triangle " + std::to_string(t),
+                         "vertex index " + std::to_string(mesh.triangles[t][c]) + " out of range");
+}
+
 std::int64_t quantize(double x, const NumberFormat& fmt) {
   return static_cast<std::int64_t>(std::floor(std::ldexp(x, fmt.coord_frac_bits) + 0.5));
 }

@@ -29,6 +29,10 @@ struct HostScaling {
 
 HostScaling host_scaling(const Mesh& mesh);
 
+// Checks what the conversion relies on: finite positions, unit normals (to 1e-3), one normal
+// per position, vertex indices in range. Throws InputError naming the mesh and the element.
+void check_convertible(const Mesh& mesh);
+
 // Round to nearest (ties towards +inf) to F fraction bits. |x| must be well inside the range.
 std::int64_t quantize(double x, const NumberFormat& fmt);
 FxVec quantize(const glm::dvec3& x, const NumberFormat& fmt);

@@ -34,6 +34,7 @@ std::string percent(std::uint64_t part, std::uint64_t whole) {
 
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks) {
   const auto t0 = std::chrono::steady_clock::now();
+  check_convertible(mesh);
   SimResult r;
   r.mesh = mesh.source;
   r.config = cfg;

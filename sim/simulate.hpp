@@ -56,8 +56,9 @@ struct SimResult {
 };
 
 // Runs every triangle of `mesh` through the unit with a uniform factor cfg.tess_factor until
-// the GPE has accepted the last vertex. cfg must have passed validate(). Throws InputError if
-// a patch saturates (the widths cannot hold the mesh).
+// the GPE has accepted the last vertex. cfg must have passed validate(). Throws InputError for
+// a mesh the host cannot convert (check_convertible) or when a patch saturates (the widths
+// cannot hold the mesh).
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks = {});
 
 // Figures derived from the statistics (docs/microarchitecture.md §10).

@@ -86,6 +86,33 @@ TEST(HostScaling, DegenerateMeshesGetUnitScale) {
   EXPECT_EQ(r.degenerate_patches, 1u);
 }
 
+TEST(HostScaling, RejectsMeshesItCannotConvert) {
+  Mesh mesh;
+  mesh.source = "made.obj";
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  mesh.triangles = {{0, 1, 2}};
+  const UnitConfig cfg = fast_config(2, NormalMode::Quadratic);
+  EXPECT_NO_THROW(simulate(mesh, cfg));
+  auto expect_error = [&](Mesh bad, const std::string& element) {
+    try {
+      simulate(bad, cfg);
+      FAIL() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("made.obj: " + element), std::string::npos) << e.what();
+    }
+  };
+  Mesh nan = mesh;
+  nan.positions[1].y = std::nan("");
+  expect_error(nan, "vertex 1");
+  Mesh zero = mesh;
+  zero.normals[2] = glm::dvec3(0.0);
+  expect_error(zero, "vertex 2");
+  Mesh index = mesh;
+  index.triangles[0].z = 3;
+  expect_error(index, "triangle 0");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Widths that cannot hold the mesh
 
