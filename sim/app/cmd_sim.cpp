@@ -151,7 +151,7 @@ void register_sim(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "sim", "Run a mesh through the cycle-level model of the unit and its geometry engine");
   sub->add_option("mesh", args->mesh, "input mesh (OBJ, PLY, STL, OFF, ...)")->capture_default_str();
-  sub->add_option("--config", args->config, "JSON configuration (keys of docs/configuration.md)");
+  sub->add_option("--config", args->config, "JSON configuration (keys: docs/microarchitecture.md §1, sim/config.hpp)");
   flags->tess_factor = sub->add_option("-L,--tess-factor", args->tess_factor, "segments per edge (1..64)");
   flags->int_blocks = sub->add_option("--int", args->int_blocks, "INT blocks N");
   flags->int_latency = sub->add_option("--int-latency", args->int_latency, "INT latency in cycles");
