@@ -1,6 +1,6 @@
 // Every parameter of the unit and its environment, in one type. JSON config files and the
 // command line both land here; validate() is the single place where ranges are checked.
-// docs/configuration.md lists the keys.
+// README.md (Configuration files) and docs/microarchitecture.md §1 list the keys.
 #pragma once
 
 #include <cstdint>
