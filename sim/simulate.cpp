@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/pattern.hpp"
+#include "sim/analytic.hpp"
 
 namespace tessim::sim {
 
@@ -216,6 +217,7 @@ nlohmann::json stats_json(const SimResult& r) {
         {"gpe_starved_by_te", r.gpe.starved}}},
       {"warnings", {{"degenerate_patches", r.degenerate_patches}, {"zero_normals", r.zero_normals}}},
       {"bottleneck", bottleneck(r)},
+      {"analytic", analytic_json(predict(r.config, r.cpg_cycles), r.config, r.triangles)},
       {"wall_seconds", r.wall_seconds},
   };
 }

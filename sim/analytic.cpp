@@ -1,0 +1,127 @@
+#include "sim/analytic.hpp"
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "model/pattern.hpp"
+
+namespace tessim::sim {
+
+namespace {
+
+// The 14-op dependence graph of docs/microarchitecture.md §8 (ops 9-13 depend on three ops of
+// the level below; ops 0-8 read only control points).
+constexpr std::array<std::array<int, 3>, 14> kDeps = {{
+    {-1, -1, -1}, {-1, -1, -1}, {-1, -1, -1}, {-1, -1, -1}, {-1, -1, -1}, {-1, -1, -1}, {-1, -1, -1},
+    {-1, -1, -1}, {-1, -1, -1}, {0, 1, 3}, {1, 2, 4}, {3, 4, 5}, {6, 7, 8}, {9, 10, 11},
+}};
+
+bool op_exists(int op, NormalMode normals) {
+  return normals != NormalMode::Linear || (op != 7 && op != 8 && op != 12);
+}
+
+// Expected cycles the GPE needs per vertex: the accept cycle, K - 1 busy cycles, then a
+// geometric wait for a cycle without a random stall (1 / (1 - p) cycles including the accept).
+double gpe_cycles_per_vertex(const UnitConfig& cfg) {
+  return cfg.gpe_cycles - 1 + 1.0 / (1.0 - cfg.gpe_stall_prob);
+}
+
+}  // namespace
+
+int single_vertex_span(int int_blocks, int int_latency, NormalMode normals) {
+  // issue[o]: cycle (from the allocation cycle 0) in which op o issues; 0 = not yet.
+  std::array<int, 14> issue{};
+  int remaining = 0;
+  for (int o = 0; o < 14; ++o) remaining += op_exists(o, normals) ? 1 : 0;
+  int last = 0;
+  for (int t = 1; remaining > 0; ++t) {
+    int issued_now = 0;
+    for (int o = 0; o < 14 && issued_now < int_blocks; ++o) {
+      if (!op_exists(o, normals) || issue[o] != 0) continue;
+      bool ready = true;
+      for (int d : kDeps[o]) {
+        if (d < 0 || !op_exists(d, normals)) continue;
+        if (issue[d] == 0 || issue[d] + int_latency > t) ready = false;
+      }
+      if (!ready) continue;
+      issue[o] = t;
+      ++issued_now;
+      --remaining;
+      last = t;
+    }
+  }
+  return last;
+}
+
+AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles) {
+  AnalyticPrediction p;
+  p.ops_per_vertex = cfg.normals == NormalMode::Linear ? 11 : 14;
+  p.patch_vertices = pattern_vertex_count(cfg.tess_factor);
+  p.cpg_cycles = cpg_cycles;
+  p.int_issue = static_cast<double>(p.ops_per_vertex) / cfg.int_blocks;
+
+  // One context per vertex from allocation (cycle 0) to the issue of its last op (S), its result
+  // Λ - 1 cycles later, retirement in the next cycle, reuse by an allocation the cycle after.
+  p.chain_span = single_vertex_span(cfg.int_blocks, cfg.int_latency, cfg.normals);
+  p.te_chain = static_cast<double>(p.chain_span + cfg.int_latency + 1) / cfg.te_contexts;
+
+  const double P = p.patch_vertices;
+  const double spare_wait = 1.0 / (1.0 - cfg.gpe_stall_prob);
+  p.gpe_vertex = gpe_cycles_per_vertex(cfg);
+  if (cfg.cpg_mapping == CpgMapping::Dedicated) {
+    // Accept, C - 1 compute cycles, write: C + 1 cycles per triangle. The first patch: push
+    // (cycle 0), accept (1), compute (2..C), write (C + 1), allocate (C + 2), first issue.
+    p.cpg = (cpg_cycles + 1) / P;
+    p.gpe = p.gpe_vertex;
+    p.fill_cycles = cpg_cycles + 3;
+  } else {
+    // Accept, C compute steps on spare GPE cycles, write: the CPG holds at least C + 2 cycles
+    // per triangle, and the GPE spends its C spare cycles on it instead of on vertices.
+    p.cpg = (cpg_cycles * spare_wait + 2) / P;
+    p.gpe = p.gpe_vertex + cpg_cycles * spare_wait / P;
+    p.fill_cycles = cpg_cycles * spare_wait + 4;
+  }
+  p.dpg = 1.0;
+  p.tail_cycles = cfg.int_latency + 1;
+
+  const std::array<std::pair<const char*, double>, 5> bounds = {{
+      {"int_issue", p.int_issue}, {"te_chain", p.te_chain}, {"cpg", p.cpg}, {"gpe", p.gpe}, {"dpg", p.dpg}}};
+  const auto largest = std::max_element(bounds.begin(), bounds.end(),
+                                        [](const auto& a, const auto& b) { return a.second < b.second; });
+  p.cycles_per_vertex = largest->second;
+  p.bottleneck = largest->first;
+  return p;
+}
+
+double AnalyticPrediction::run_cycles(std::uint64_t triangles) const {
+  if (triangles == 0) return 0;
+  // The first patch waits for its control points (push, accept, compute, write, allocate; one
+  // more cycle in the gpe mapping, whose accept does not count down) and the last patch is not
+  // overlapped with a following CPG, so it runs at the rate of the blocks behind the CPG.
+  // After the last issue: the result (Λ - 1), retirement, acceptance.
+  const double behind_cpg = std::max({int_issue, te_chain, dpg, gpe_vertex});
+  return fill_cycles + (static_cast<double>(triangles) - 1) * patch_vertices * cycles_per_vertex +
+         patch_vertices * behind_cpg + tail_cycles;
+}
+
+nlohmann::json analytic_json(const AnalyticPrediction& p, const UnitConfig& cfg, std::uint64_t triangles) {
+  const double cycles = p.run_cycles(triangles);
+  const double vertices = static_cast<double>(triangles) * p.patch_vertices;
+  return {
+      {"bounds",
+       {{"int_issue", p.int_issue}, {"te_chain", p.te_chain}, {"cpg", p.cpg}, {"gpe", p.gpe}, {"dpg", p.dpg}}},
+      {"chain_span", p.chain_span},
+      {"cycles_per_vertex", p.cycles_per_vertex},
+      {"throughput", 1.0 / p.cycles_per_vertex},
+      {"bottleneck", p.bottleneck},
+      {"int_utilisation", p.ops_per_vertex / (cfg.int_blocks * p.cycles_per_vertex)},
+      {"gpe_busy", cfg.gpe_cycles / p.cycles_per_vertex},
+      {"run_cycles", cycles},
+      {"run_cycles_per_vertex", vertices > 0 ? cycles / vertices : 0.0},
+  };
+}
+
+}  // namespace tessim::sim
