@@ -31,7 +31,7 @@ struct UnitInputs {
   bool tri_valid = false;
   TriangleFx tri{};
   bool vtx_ready = false;
-  bool cpg_step = true;  // gpe mapping only: the GPE has a spare cycle for CPG this cycle
+  bool cpg_step = false;  // gpe mapping only: the GPE has a spare cycle for CPG this cycle
 };
 
 // The counters both implementations keep (docs/microarchitecture.md §10), compared exactly
