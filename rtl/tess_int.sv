@@ -1,0 +1,137 @@
+// INT block: one barycentric combination of three points, r = w A + u B + v C per component,
+// with w + u + v = 2^B (sim/fixed.hpp int_op): the exact sum of the three products is
+// rounded half up once, and cannot overflow because r is a convex combination.
+//
+// Latency (docs/microarchitecture.md §8): an op issued in cycle t leaves on res_o in cycle
+// t + Latency - 1, so that the TE writes it at the end of that cycle. With Latency = 1 the
+// block is combinational. With Latency >= 2 the first register sits between the multipliers
+// and the adder (the natural cut); any further registers delay the rounded result.
+module tess_int #(
+  parameter int unsigned CoordWidth = 24,               // W
+  parameter int unsigned BaryBits   = tess_pkg::BaryBits,  // B
+  parameter int unsigned Latency    = tess_pkg::IntLatency,
+  parameter int unsigned TagWidth   = 8,                // context index and op, carried along
+  parameter int unsigned InjectBug  = tess_pkg::InjectBug
+) (
+  input  logic                    clk_i,
+  input  logic                    rst_ni,
+  input  logic                    valid_i,
+  input  logic [TagWidth-1:0]     tag_i,
+  input  logic [BaryBits:0]       w_i,
+  input  logic [BaryBits:0]       u_i,
+  input  logic [BaryBits:0]       v_i,
+  input  logic [3*CoordWidth-1:0] a_i,
+  input  logic [3*CoordWidth-1:0] b_i,
+  input  logic [3*CoordWidth-1:0] c_i,
+  output logic                    valid_o,
+  output logic [TagWidth-1:0]     tag_o,
+  output logic [3*CoordWidth-1:0] res_o
+);
+
+  localparam int unsigned W     = CoordWidth;
+  localparam int unsigned ProdW = BaryBits + 2 + W;  // (B+2)-bit signed weight x W-bit operand
+  localparam int unsigned SumW  = ProdW + 2;
+
+  // Stage 1: nine exact products (weights are unsigned, so they get a zero sign bit).
+  (* mem2reg *) logic signed [BaryBits+1:0] weight [3];
+  (* mem2reg *) logic signed [W-1:0]        operand [3][3];  // [component][A, B, C]
+  (* mem2reg *) logic signed [ProdW-1:0]    prod_s [3][3];
+  (* mem2reg *) logic [ProdW-1:0]           prod [3][3];
+  assign weight[0] = $signed({1'b0, w_i});
+  assign weight[1] = $signed({1'b0, u_i});
+  assign weight[2] = $signed({1'b0, v_i});
+  for (genvar c = 0; c < 3; c++) begin : g_comp
+    assign operand[c][0] = $signed(a_i[c*W +: W]);
+    assign operand[c][1] = $signed(b_i[c*W +: W]);
+    assign operand[c][2] = $signed(c_i[c*W +: W]);
+    for (genvar o = 0; o < 3; o++) begin : g_op
+      assign prod_s[c][o] = weight[o] * operand[c][o];
+      assign prod[c][o]   = prod_s[c][o];
+    end
+  end
+
+  // Optional pipeline register after the multipliers.
+  (* mem2reg *) logic [ProdW-1:0]    sum_in [3][3];
+  logic                stage_valid;
+  logic [TagWidth-1:0] stage_tag;
+  if (Latency >= 2) begin : g_mul_reg
+    (* mem2reg *) logic [ProdW-1:0] prod_q [3][3];
+    logic                valid_q;
+    logic [TagWidth-1:0] tag_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        valid_q <= 1'b0;
+      end else begin
+        valid_q <= valid_i;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      tag_q <= tag_i;
+      for (int c = 0; c < 3; c++) begin
+        for (int o = 0; o < 3; o++) prod_q[c][o] <= prod[c][o];
+      end
+    end
+    for (genvar c = 0; c < 3; c++) begin : g_c
+      for (genvar o = 0; o < 3; o++) begin : g_o
+        assign sum_in[c][o] = prod_q[c][o];
+      end
+    end
+    assign stage_valid = valid_q;
+    assign stage_tag   = tag_q;
+  end else begin : g_mul_comb
+    for (genvar c = 0; c < 3; c++) begin : g_c
+      for (genvar o = 0; o < 3; o++) begin : g_o
+        assign sum_in[c][o] = prod[c][o];
+      end
+    end
+    logic unused_clk;
+    assign unused_clk = clk_i ^ rst_ni;
+    assign stage_valid = valid_i;
+    assign stage_tag   = tag_i;
+  end
+
+  // Stage 2: exact sum, one rounding half up (InjectBug 1: the +half is dropped).
+  localparam logic [SumW-1:0] Half = (InjectBug == 1) ? '0 : SumW'(1) << (BaryBits - 1);
+  (* mem2reg *) logic signed [SumW-1:0] term [3][3];
+  (* mem2reg *) logic [SumW-1:0]        sum [3];
+  logic [3*W-1:0]         res;
+  for (genvar c = 0; c < 3; c++) begin : g_sum
+    for (genvar o = 0; o < 3; o++) begin : g_term
+      assign term[c][o] = {{(SumW - ProdW){sum_in[c][o][ProdW-1]}}, sum_in[c][o]};
+    end
+    assign sum[c] = term[c][0] + term[c][1] + term[c][2] + Half;
+    assign res[c*W +: W] = sum[c][BaryBits +: W];
+  end
+
+  // Further Latency - 2 registers delay the result.
+  if (Latency >= 3) begin : g_out_regs
+    localparam int unsigned Extra = Latency - 2;
+    (* mem2reg *) logic                valid_q [Extra];
+    (* mem2reg *) logic [TagWidth-1:0] tag_q [Extra];
+    (* mem2reg *) logic [3*W-1:0]      res_q [Extra];
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        for (int i = 0; i < Extra; i++) valid_q[i] <= 1'b0;
+      end else begin
+        valid_q[0] <= stage_valid;
+        for (int i = 1; i < Extra; i++) valid_q[i] <= valid_q[i-1];
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      tag_q[0] <= stage_tag;
+      res_q[0] <= res;
+      for (int i = 1; i < Extra; i++) begin
+        tag_q[i] <= tag_q[i-1];
+        res_q[i] <= res_q[i-1];
+      end
+    end
+    assign valid_o = valid_q[Extra-1];
+    assign tag_o   = tag_q[Extra-1];
+    assign res_o   = res_q[Extra-1];
+  end else begin : g_out_comb
+    assign valid_o = stage_valid;
+    assign tag_o   = stage_tag;
+    assign res_o   = res;
+  end
+
+endmodule

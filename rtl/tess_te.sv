@@ -1,0 +1,343 @@
+// TE: tessellation engine (docs/microarchitecture.md §7, §8). V vertex contexts in a
+// circular queue (allocation at the tail, in-order retirement at the head), the in-order
+// priority scheduler that issues the first N ready (age, op) candidates onto N INT blocks,
+// the temporaries, and retirement into the VTX FIFO. The DPG supplies the domain points.
+module tess_te #(
+  parameter int unsigned CoordWidth = 24,
+  parameter int unsigned BaryBits   = tess_pkg::BaryBits,
+  parameter int unsigned IntBlocks  = tess_pkg::IntBlocks,
+  parameter int unsigned IntLatency = tess_pkg::IntLatency,
+  parameter int unsigned Contexts   = tess_pkg::Contexts,
+  parameter int unsigned InjectBug  = tess_pkg::InjectBug,
+  localparam int unsigned W         = CoordWidth,
+  localparam int unsigned VtxW      = 6 * W + 2 * (BaryBits + 1) + 3 * tess_pkg::FactorBits
+                                      + tess_pkg::IdBits + 1 + tess_pkg::FlagBits
+) (
+  input  logic                            clk_i,
+  input  logic                            rst_ni,
+  input  logic [tess_pkg::ModeBits-1:0]   mode_i,
+  // Control-point buffers
+  input  logic                            rd_full_i,
+  input  logic                            rd_ptr_i,
+  input  logic [tess_pkg::FactorBits-1:0] rd_l_i,
+  input  logic [tess_pkg::IdBits-1:0]     rd_id_i,
+  input  logic [tess_pkg::FlagBits-1:0]   rd_flags_i,
+  input  logic [2*30*W-1:0]               b_i,
+  input  logic [2*18*W-1:0]               n_i,
+  output logic                            drain_o,
+  output logic                            release_o,
+  output logic                            release_buf_o,
+  // VTX FIFO
+  input  logic                            vtx_full_i,
+  output logic                            vtx_push_o,
+  output logic [VtxW-1:0]                 vtx_o,
+  // Statistics (§10)
+  input  logic                            upstream_busy_i,  // CPG busy or TRI FIFO not empty
+  output logic [IntBlocks-1:0]            int_busy_o,
+  output logic                            te_busy_o,
+  output logic                            te_blocked_o,
+  output logic                            te_starved_o,
+  output logic                            te_idle_o,
+  output logic                            te_pipeline_o
+);
+
+  localparam int unsigned B       = BaryBits;
+  localparam int unsigned V       = Contexts;
+  localparam int unsigned N       = IntBlocks;
+  localparam int unsigned NumOps  = tess_pkg::NumOps;
+  localparam int unsigned LBits   = tess_pkg::FactorBits;
+  localparam int unsigned IdBits  = tess_pkg::IdBits;
+  localparam int unsigned FlagW   = tess_pkg::FlagBits;
+  localparam int unsigned IdxW    = (V > 1) ? $clog2(V) : 1;
+  localparam int unsigned CntW    = $clog2(V + 1);
+  localparam int unsigned OpW     = 4;
+  localparam int unsigned TagW    = IdxW + OpW;
+  localparam int unsigned NumCand = V * NumOps;
+  localparam int unsigned SelW    = $clog2(N + 1);
+
+  logic mode_linear;
+  assign mode_linear = (mode_i == tess_pkg::ModeLinear);
+
+  // ------------------------------------------------------------------ contexts
+  logic [IdxW-1:0] head_q, tail_q;
+  logic [CntW-1:0] count_q;
+  (* mem2reg *) logic [B:0]         ctx_w_q [V];
+  (* mem2reg *) logic [B:0]         ctx_u_q [V];
+  (* mem2reg *) logic [B:0]         ctx_v_q [V];
+  (* mem2reg *) logic [LBits-1:0]   ctx_j_q [V];
+  (* mem2reg *) logic [LBits-1:0]   ctx_k_q [V];
+  (* mem2reg *) logic [LBits-1:0]   ctx_l_q [V];
+  (* mem2reg *) logic [IdBits-1:0]  ctx_id_q [V];
+  (* mem2reg *) logic [FlagW-1:0]   ctx_flags_q [V];
+  (* mem2reg *) logic               ctx_last_q [V];
+  (* mem2reg *) logic               ctx_buf_q [V];
+  (* mem2reg *) logic [NumOps-1:0]  issued_q [V];
+  (* mem2reg *) logic [NumOps-1:0]  done_q [V];
+  (* mem2reg *) logic [3*W-1:0]     temp_q [V][NumOps];
+
+  // ------------------------------------------------------------------ DPG and allocation
+  logic [LBits-1:0] dpg_j, dpg_k;
+  logic [B:0]       dpg_w, dpg_u, dpg_v;
+  logic             dpg_last, alloc;
+
+  assign alloc = (count_q < CntW'(V)) && rd_full_i;
+
+  tess_dpg #(.BaryBits(B)) u_dpg (
+    .clk_i    (clk_i),
+    .rst_ni   (rst_ni),
+    .l_i      (rd_l_i),
+    .consume_i(alloc),
+    .j_o      (dpg_j),
+    .k_o      (dpg_k),
+    .w_o      (dpg_w),
+    .u_o      (dpg_u),
+    .v_o      (dpg_v),
+    .last_o   (dpg_last)
+  );
+  assign drain_o = alloc && dpg_last;
+
+  // ------------------------------------------------------------------ scheduler
+  // Candidate (age a, op o) has index a * 14 + o: the lexicographic priority order.
+  (* mem2reg *) logic [IdxW-1:0]   age_ctx [V];      // physical context of age a
+  logic [NumCand-1:0] ready;
+  for (genvar a = 0; a < V; a++) begin : g_age
+    logic [IdxW:0]       sum;
+    logic [NumOps-1:0]   dn, rdy;
+    assign sum = {1'b0, head_q} + (IdxW + 1)'(a);
+    assign age_ctx[a] = (sum >= (IdxW + 1)'(V)) ? IdxW'(sum - (IdxW + 1)'(V)) : sum[IdxW-1:0];
+    assign dn = done_q[age_ctx[a]];
+    logic unused_dn;
+    assign unused_dn = ^dn[13:12];  // nothing depends on ops 12 and 13
+    // Dependences of the L2 and L3 operations.
+    always_comb begin
+      rdy = ~issued_q[age_ctx[a]];
+      rdy[9]  = rdy[9]  & dn[0] & dn[1] & dn[3];
+      rdy[10] = rdy[10] & dn[1] & dn[2] & dn[4];
+      rdy[11] = rdy[11] & dn[3] & dn[4] & dn[5];
+      rdy[12] = rdy[12] & dn[6] & dn[7] & dn[8];
+      rdy[13] = rdy[13] & dn[9] & dn[10] & dn[11];
+    end
+    assign ready[a*NumOps +: NumOps] = (CntW'(a) < count_q) ? rdy : '0;
+  end
+
+  // The first N ready candidates issue, the i-th onto INT block i.
+  logic [N-1:0]       slot_valid;
+  (* mem2reg *) logic [IdxW-1:0]    slot_age [N];
+  (* mem2reg *) logic [OpW-1:0]     slot_op [N];
+  logic [NumCand-1:0] selected;
+  logic [SelW-1:0]    taken;
+  always_comb begin
+    taken    = '0;
+    selected = '0;
+    for (int i = 0; i < N; i++) begin
+      slot_valid[i] = 1'b0;
+      slot_age[i]   = '0;
+      slot_op[i]    = '0;
+    end
+    for (int c = 0; c < NumCand; c++) begin
+      if (ready[c] && (taken < SelW'(N))) begin
+        for (int i = 0; i < N; i++) begin
+          if (taken == SelW'(i)) begin
+            slot_valid[i] = 1'b1;
+            slot_age[i]   = IdxW'(c / NumOps);
+            slot_op[i]    = OpW'(c % NumOps);
+          end
+        end
+        selected[c] = 1'b1;
+        taken = taken + SelW'(1);
+      end
+    end
+  end
+
+  // ------------------------------------------------------------------ INT blocks
+  logic [N-1:0]      wb_valid;
+  (* mem2reg *) logic [TagW-1:0]   wb_tag [N];
+  (* mem2reg *) logic [3*W-1:0]    wb_res [N];
+
+  for (genvar i = 0; i < N; i++) begin : g_int
+    logic [IdxW-1:0] ctx;
+    logic [OpW-1:0]  op;
+    logic            bank;
+    (* mem2reg *) logic [3*W-1:0]  bsel [10];
+    (* mem2reg *) logic [3*W-1:0]  nsel [6];
+    (* mem2reg *) logic [3*W-1:0]  tsel [12];
+    logic [3*W-1:0]  opa, opb, opc;
+    assign ctx  = age_ctx[slot_age[i]];
+    assign op   = slot_op[i];
+    assign bank = ctx_buf_q[ctx];
+    for (genvar k = 0; k < 10; k++) begin : g_b
+      assign bsel[k] = bank ? b_i[(30 + 3 * k) * W +: 3 * W] : b_i[3 * k * W +: 3 * W];
+    end
+    for (genvar k = 0; k < 6; k++) begin : g_n
+      assign nsel[k] = bank ? n_i[(18 + 3 * k) * W +: 3 * W] : n_i[3 * k * W +: 3 * W];
+    end
+    // Temporaries T0..T11 of the context: explicit one-hot selects (an index into the
+    // two-dimensional array would be decoded over all V x 14 entries).
+    logic [V-1:0] ctx_hot;
+    for (genvar x = 0; x < V; x++) begin : g_hot
+      assign ctx_hot[x] = (ctx == IdxW'(x));
+    end
+    always_comb begin
+      for (int k = 0; k < 12; k++) begin
+        tsel[k] = '0;
+        for (int x = 0; x < V; x++) tsel[k] |= ctx_hot[x] ? temp_q[x][k] : '0;
+      end
+    end
+    // Operands of the 14 operations (§8 table; linear op 6 combines N1, N2, N3).
+    always_comb begin
+      case (op)
+        4'd0:    begin opa = bsel[0]; opb = bsel[1]; opc = bsel[4]; end
+        4'd1:    begin opa = bsel[1]; opb = bsel[2]; opc = bsel[5]; end
+        4'd2:    begin opa = bsel[2]; opb = bsel[3]; opc = bsel[6]; end
+        4'd3:    begin opa = bsel[4]; opb = bsel[5]; opc = bsel[7]; end
+        4'd4:    begin opa = bsel[5]; opb = bsel[6]; opc = bsel[8]; end
+        4'd5:    begin opa = bsel[7]; opb = bsel[8]; opc = bsel[9]; end
+        4'd6:    begin
+          opa = nsel[0];
+          opb = mode_linear ? nsel[2] : nsel[1];
+          opc = mode_linear ? nsel[5] : nsel[3];
+        end
+        4'd7:    begin opa = nsel[1]; opb = nsel[2]; opc = nsel[4]; end
+        4'd8:    begin opa = nsel[3]; opb = nsel[4]; opc = nsel[5]; end
+        4'd9:    begin opa = tsel[0]; opb = tsel[1]; opc = tsel[3]; end
+        4'd10:   begin opa = tsel[1]; opb = tsel[2]; opc = tsel[4]; end
+        4'd11:   begin opa = tsel[3]; opb = tsel[4]; opc = tsel[5]; end
+        4'd12:   begin opa = tsel[6]; opb = tsel[7]; opc = tsel[8]; end
+        default: begin opa = tsel[9]; opb = tsel[10]; opc = tsel[11]; end
+      endcase
+    end
+
+    tess_int #(
+      .CoordWidth(W),
+      .BaryBits  (B),
+      .Latency   (IntLatency),
+      .TagWidth  (TagW),
+      .InjectBug (InjectBug)
+    ) u_int (
+      .clk_i  (clk_i),
+      .rst_ni (rst_ni),
+      .valid_i(slot_valid[i]),
+      .tag_i  ({ctx, op}),
+      .w_i    (ctx_w_q[ctx]),
+      .u_i    (ctx_u_q[ctx]),
+      .v_i    (ctx_v_q[ctx]),
+      .a_i    (opa),
+      .b_i    (opb),
+      .c_i    (opc),
+      .valid_o(wb_valid[i]),
+      .tag_o  (wb_tag[i]),
+      .res_o  (wb_res[i])
+    );
+  end
+
+  // ------------------------------------------------------------------ retirement
+  logic head_done, retire;
+  assign head_done = (count_q != '0) && (done_q[head_q] == '1);
+  if (InjectBug == 2) begin : g_bug_drop_stall
+    // Fault: the last vertex of a patch retires even into a full VTX FIFO (and is lost).
+    assign retire = head_done && (!vtx_full_i || ctx_last_q[head_q]);
+  end else begin : g_retire
+    assign retire = head_done && !vtx_full_i;
+  end
+
+  assign vtx_push_o    = retire;
+  assign release_o     = retire && ctx_last_q[head_q];
+  assign release_buf_o = ctx_buf_q[head_q];
+  // Entry: {flags, last, id, L, k, j, v, u, normal, position}
+  logic [3*W-1:0] head_pos, head_nrm;
+  always_comb begin
+    head_pos = '0;
+    head_nrm = '0;
+    for (int x = 0; x < V; x++) begin
+      if (head_q == IdxW'(x)) begin
+        head_pos = temp_q[x][tess_pkg::OpGeomL3];
+        head_nrm = mode_linear ? temp_q[x][tess_pkg::OpNormalL1] : temp_q[x][tess_pkg::OpNormalL2];
+      end
+    end
+  end
+  assign vtx_o = {ctx_flags_q[head_q], ctx_last_q[head_q], ctx_id_q[head_q], ctx_l_q[head_q],
+                  ctx_k_q[head_q], ctx_j_q[head_q], ctx_v_q[head_q], ctx_u_q[head_q],
+                  head_nrm, head_pos};
+
+  // ------------------------------------------------------------------ queue state
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      head_q  <= '0;
+      tail_q  <= '0;
+      count_q <= '0;
+    end else begin
+      if (alloc) tail_q <= (tail_q == IdxW'(V - 1)) ? '0 : tail_q + IdxW'(1);
+      if (retire) head_q <= (head_q == IdxW'(V - 1)) ? '0 : head_q + IdxW'(1);
+      if (alloc && !retire) count_q <= count_q + CntW'(1);
+      else if (retire && !alloc) count_q <= count_q - CntW'(1);
+    end
+  end
+
+  // Context fields are written at allocation; issued/done/temporaries are only read for
+  // allocated contexts, so none of them needs a reset.
+  for (genvar x = 0; x < V; x++) begin : g_ctx
+    logic              alloc_here;
+    logic [NumOps-1:0] issue_set, done_set;
+    assign alloc_here = alloc && (tail_q == IdxW'(x));
+    always_comb begin
+      issue_set = '0;
+      for (int a = 0; a < V; a++) begin
+        if (age_ctx[a] == IdxW'(x)) issue_set |= selected[a*NumOps +: NumOps];
+      end
+      done_set = '0;
+      for (int i = 0; i < N; i++) begin
+        for (int o = 0; o < NumOps; o++) begin
+          if (wb_valid[i] && wb_tag[i] == {IdxW'(x), OpW'(o)}) done_set[o] = 1'b1;
+        end
+      end
+    end
+
+    always_ff @(posedge clk_i) begin
+      if (alloc_here) begin
+        ctx_w_q[x]     <= dpg_w;
+        ctx_u_q[x]     <= dpg_u;
+        ctx_v_q[x]     <= dpg_v;
+        ctx_j_q[x]     <= dpg_j;
+        ctx_k_q[x]     <= dpg_k;
+        ctx_l_q[x]     <= rd_l_i;
+        ctx_id_q[x]    <= rd_id_i;
+        ctx_flags_q[x] <= rd_flags_i;
+        ctx_last_q[x]  <= dpg_last;
+        ctx_buf_q[x]   <= rd_ptr_i;
+        issued_q[x]    <= mode_linear ? tess_pkg::LinearSkipOps : '0;
+        done_q[x]      <= mode_linear ? tess_pkg::LinearSkipOps : '0;
+      end else begin
+        issued_q[x] <= issued_q[x] | issue_set;
+        done_q[x]   <= done_q[x] | done_set;
+      end
+    end
+
+    for (genvar o = 0; o < NumOps; o++) begin : g_temp
+      always_ff @(posedge clk_i) begin
+        for (int i = 0; i < N; i++) begin
+          if (wb_valid[i] && wb_tag[i] == {IdxW'(x), OpW'(o)}) temp_q[x][o] <= wb_res[i];
+        end
+      end
+    end
+  end
+
+  // ------------------------------------------------------------------ statistics
+  logic head_all_done, no_point;
+  assign head_all_done = head_done;
+  assign no_point      = (count_q == '0) && !rd_full_i;
+  assign int_busy_o    = slot_valid;
+  assign te_busy_o     = (slot_valid != '0);
+  assign te_blocked_o  = !te_busy_o && head_all_done && vtx_full_i;
+  assign te_starved_o  = !te_busy_o && !te_blocked_o && no_point && upstream_busy_i;
+  assign te_idle_o     = !te_busy_o && !te_blocked_o && no_point && !upstream_busy_i;
+  assign te_pipeline_o = !te_busy_o && !te_blocked_o && !no_point;
+
+`ifndef SYNTHESIS
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      assert (!(vtx_push_o && vtx_full_i)) else $error("tess_te: retirement into a full VTX FIFO");
+    end
+  end
+`endif
+
+endmodule
