@@ -1,0 +1,612 @@
+#!/usr/bin/python3
+"""Parameter sweeps of the cycle model: every point one `tessim sim` run, results as tidy CSV/JSON.
+
+    sweep.py SPEC.json -o results.csv [--jobs N] [--shard i/n] [--cache DIR] [--tessim PATH]
+    sweep.py merge PART.csv [PART.csv ...] -o results.csv
+
+SPEC.json (examples in scripts/sweeps/):
+
+    {
+      "base":  { "mesh": "PLY/Wuson.ply", "gpe_cycles": 8 },           # defaults of every point
+      "grids": [                                                       # union of Cartesian products
+        { "name": "int_vs_gpe", "int_blocks": [1, 2, 3], "gpe_cycles": [4, 8] },
+        { "name": "widths", "coord_frac_bits": [12, 16, 20], "errors": true }
+      ]
+    }
+
+A spec without "grids" is one grid (its top-level keys). A scalar stands for a one-element list.
+Keys: every key of a tessim config file (sim/config.hpp: int_blocks, int_latency, te_contexts,
+gpe_cycles, gpe_stall_prob, seed, tess_factor, normals, cpg_mapping, cpg_gpe_cycles,
+coord_int_bits, coord_frac_bits, bary_bits, tri_fifo_depth, vtx_fifo_depth), plus
+  mesh    a mesh file; a relative path is looked up next to the spec, then under
+          /usr/share/assimp/models;
+  errors  true: also measure the fixed-point error of the run against the float64 reference
+          (`tessim sim -o` versus `tessim tessellate` at the same L and normal mode, vertex by
+          vertex): positions relative to the input mesh's bounding-box diagonal, normals as angles.
+
+Output: one row per distinct point (a point listed by two grids runs once; column `grids` names
+both), in spec order, with every parameter and every statistic of `tessim sim --stats` flattened
+into columns (`te.busy`, `int.blocks.0.utilisation`, `analytic.bounds.cpg`, ...). `-o X.csv`
+writes X.csv and X.json (the same rows, typed).
+
+Cache and resume: each finished point is stored at once in the cache directory (default:
+OUTPUT.cache/) under a SHA-256 of its full configuration, the content of its mesh and the content
+of the tessim binary. A rerun skips cached points, so an interrupted sweep resumes where it
+stopped and loses only the points that were running; a rebuilt tessim reruns everything.
+
+Sharding: `--shard i/n` (1 <= i <= n) runs every n-th point starting at the i-th, for n
+independent jobs of a batch scheduler. Combine the parts with `sweep.py merge part*.csv -o all.csv`
+(rows sorted by their index in the full spec, column `point`), or point every job at one shared
+--cache and rerun the unsharded spec once: it only collects.
+
+Exit status: 0 when every point ran (points the tool rejects as bad input, e.g. widths too narrow
+for the mesh, are rows with status `input_error` and its message); 1 when a run crashed or was
+killed; 2 for a bad spec or command line.
+"""
+
+import argparse
+import concurrent.futures
+import csv
+import hashlib
+import itertools
+import json
+import math
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+
+REPO = Path(__file__).resolve().parent.parent
+ASSIMP_MODELS = Path("/usr/share/assimp/models")
+CACHE_SCHEMA = 2  # bump when the cache record or the error measurement changes
+
+# Keys that are not tessim configuration keys.
+SWEEP_KEYS = ("mesh", "errors")
+# Column order of the parameters; keys not listed follow in alphabetical order.
+PARAM_ORDER = ["mesh", "tess_factor", "normals", "int_blocks", "int_latency", "te_contexts",
+               "gpe_cycles", "gpe_stall_prob", "seed", "cpg_mapping", "cpg_gpe_cycles",
+               "coord_int_bits", "coord_frac_bits", "bary_bits", "tri_fifo_depth",
+               "vtx_fifo_depth", "errors"]
+# Statistics that are not columns: the config is already the parameter columns, the mesh path
+# is the `mesh` parameter.
+STATS_SKIP = ("config", "mesh")
+
+
+class SpecError(Exception):
+    pass
+
+
+# --------------------------------------------------------------------------- spec
+
+def resolve_mesh(value, spec_dir):
+    p = Path(value)
+    if p.is_absolute():
+        return str(p)
+    for base in (spec_dir, ASSIMP_MODELS):
+        if (base / p).exists():
+            return str((base / p).resolve())
+    raise SpecError(f"mesh '{value}' not found next to the spec or under {ASSIMP_MODELS}")
+
+
+def expand(spec, spec_dir):
+    """Points of the spec in order: list of (params dict, grid names)."""
+    if not isinstance(spec, dict):
+        raise SpecError("the spec must be a JSON object")
+    base = spec.get("base", {})
+    grids = spec.get("grids")
+    if grids is None:
+        grids = [{k: v for k, v in spec.items() if k not in ("base", "description")}]
+    if not isinstance(base, dict) or not isinstance(grids, list) or not grids:
+        raise SpecError("'base' must be an object and 'grids' a non-empty list of objects")
+    points, index = [], {}
+    for g, grid in enumerate(grids):
+        if not isinstance(grid, dict):
+            raise SpecError(f"grid {g} is not an object")
+        name = str(grid.get("name", f"grid{g}"))
+        axes = {k: v for k, v in grid.items() if k != "name"}
+        keys = list(axes)
+        lists = []
+        for k in keys:
+            vals = axes[k] if isinstance(axes[k], list) else [axes[k]]
+            if not vals:
+                raise SpecError(f"grid '{name}': '{k}' has no values")
+            lists.append(vals)
+        for combo in itertools.product(*lists):
+            params = dict(base)
+            params.update(zip(keys, combo))
+            if "mesh" not in params:
+                raise SpecError(f"grid '{name}': no mesh (give 'mesh' in base or in the grid)")
+            params["mesh"] = resolve_mesh(params["mesh"], spec_dir)
+            params["errors"] = bool(params.get("errors", False))
+            ident = json.dumps(params, sort_keys=True)
+            if ident in index:
+                names = points[index[ident]][1]
+                if name not in names:
+                    names.append(name)
+            else:
+                index[ident] = len(points)
+                points.append((params, [name]))
+    return points
+
+
+def tessim_config(params):
+    return {k: v for k, v in params.items() if k not in SWEEP_KEYS}
+
+
+# --------------------------------------------------------------------------- hashing
+
+def file_sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def point_key(params, mesh_sha, tessim_sha):
+    ident = {"schema": CACHE_SCHEMA, "config": tessim_config(params), "errors": params["errors"],
+             "mesh_sha256": mesh_sha, "tessim_sha256": tessim_sha}
+    return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
+
+
+# --------------------------------------------------------------------------- running one point
+
+class Runner:
+    """Runs points; tracks child processes so an interrupt can end them."""
+
+    def __init__(self, tessim, workdir):
+        self.tessim = tessim
+        self.workdir = Path(workdir)
+        self.lock = threading.Lock()
+        self.children = set()
+        self.stopping = False
+        self.references = {}  # (mesh, L, normals) -> (lock, path of the reference PLY or None)
+        self.infos = {}       # mesh -> `tessim info --json`
+
+    def run(self, args, what):
+        proc = subprocess.Popen([str(self.tessim)] + args, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+        with self.lock:
+            if self.stopping:
+                proc.kill()
+            self.children.add(proc)
+        try:
+            out, err = proc.communicate()
+        finally:
+            with self.lock:
+                self.children.discard(proc)
+        if proc.returncode == 2:
+            raise InputRejected(err.strip() or f"{what}: exit status 2")
+        if proc.returncode != 0:
+            raise RuntimeError(f"{what}: exit status {proc.returncode}: {err.strip()}")
+        return out
+
+    def stop(self):
+        with self.lock:
+            self.stopping = True
+            for p in self.children:
+                p.kill()
+
+    def reference(self, mesh, L, normals):
+        """Float64 reference tessellation, made once per (mesh, L, normals) in this run."""
+        key = (mesh, L, normals)
+        with self.lock:
+            entry = self.references.setdefault(key, [threading.Lock(), None])
+        with entry[0]:
+            if entry[1] is None:
+                name = hashlib.sha256(repr(key).encode()).hexdigest()[:16]
+                path = self.workdir / f"ref-{name}.ply"
+                self.run(["tessellate", mesh, "-L", str(L), "--normals", normals, "-o", str(path)],
+                         f"tessellate {mesh}")
+                entry[1] = path
+            return entry[1]
+
+    def point(self, params, key):
+        tmp = Path(tempfile.mkdtemp(prefix=f"pt-{key[:12]}-", dir=self.workdir))
+        try:
+            cfg = tmp / "config.json"
+            cfg.write_text(json.dumps(tessim_config(params)))
+            stats = tmp / "stats.json"
+            args = ["sim", params["mesh"], "--config", str(cfg), "--stats", str(stats)]
+            if params["errors"]:
+                args += ["-o", str(tmp / "sim.ply")]
+            try:
+                self.run(args, f"sim {params['mesh']}")
+            except InputRejected as e:
+                return {"status": "input_error", "message": str(e)}
+            record = {"status": "ok", "stats": json.loads(stats.read_text())}
+            if params["errors"]:
+                conf = record["stats"]["config"]
+                ref = self.reference(params["mesh"], conf["tess_factor"], conf["normals"])
+                record["errors"] = measure_errors(tmp / "sim.ply", ref, self.mesh_diagonal(params["mesh"]))
+            return record
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+
+    def mesh_info(self, mesh):
+        with self.lock:
+            if mesh in self.infos:
+                return self.infos[mesh]
+        info = json.loads(self.run(["info", mesh, "--json"], f"info {mesh}"))
+        with self.lock:
+            self.infos[mesh] = info
+        return info
+
+    def mesh_diagonal(self, mesh):
+        return float(self.mesh_info(mesh)["diagonal"])
+
+
+class InputRejected(Exception):
+    """tessim exited with status 2: the point's input is invalid (a result, not a failure)."""
+
+
+# --------------------------------------------------------------------------- fixed-point error
+
+def read_ply_vertices(path):
+    """Vertices (n x 6: x y z nx ny nz, double) of a PLY written by tessim's MeshWriter."""
+    with open(path, "rb") as f:
+        data = f.read()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode("ascii").splitlines()
+    if header[1] != "format binary_little_endian 1.0":
+        raise RuntimeError(f"{path}: not a binary little-endian PLY")
+    count = next(int(line.split()[2]) for line in header if line.startswith("element vertex"))
+    props = [line.split()[2] for line in header if line.startswith("property double")]
+    if props[:6] != ["x", "y", "z", "nx", "ny", "nz"]:
+        raise RuntimeError(f"{path}: unexpected vertex properties {props}")
+    return np.frombuffer(data, dtype="<f8", count=count * 6, offset=end).reshape(count, 6)
+
+
+def measure_errors(sim_path, ref_path, diagonal):
+    """Per-vertex errors of the unit against the float64 reference (same vertex order)."""
+    sim, ref = read_ply_vertices(sim_path), read_ply_vertices(ref_path)
+    if sim.shape != ref.shape:
+        raise RuntimeError(f"vertex counts differ: {sim.shape[0]} simulated, {ref.shape[0]} reference")
+    dpos = np.linalg.norm(sim[:, :3] - ref[:, :3], axis=1) / diagonal
+    ns, nr = sim[:, 3:], ref[:, 3:]
+    # A normal that vanished in fixed point is returned as zero; it has no direction to compare.
+    valid = np.linalg.norm(ns, axis=1) > 0
+    cross = np.linalg.norm(np.cross(ns[valid], nr[valid]), axis=1)
+    dot = np.einsum("ij,ij->i", ns[valid], nr[valid])
+    angle = np.arctan2(cross, dot)
+    return {
+        "position_max": float(dpos.max()),
+        "position_rms": float(np.sqrt(np.mean(dpos ** 2))),
+        "normal_angle_max": float(angle.max()) if angle.size else 0.0,
+        "normal_angle_rms": float(np.sqrt(np.mean(angle ** 2))) if angle.size else 0.0,
+        "vertices": int(sim.shape[0]),
+        "normals_compared": int(valid.sum()),
+    }
+
+
+# --------------------------------------------------------------------------- rows
+
+def flatten(prefix, value, out):
+    if isinstance(value, dict):
+        for k, v in value.items():
+            flatten(f"{prefix}.{k}" if prefix else k, v, out)
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            flatten(f"{prefix}.{i}", v, out)
+    else:
+        out[prefix] = value
+
+
+def make_row(index, params, grids, key, record, tessim_sha):
+    row = {"point": index, "key": key[:16], "grids": ";".join(grids), "status": record["status"]}
+    conf = dict(params)
+    if record["status"] == "ok":
+        for k, v in record["stats"]["config"].items():
+            conf.setdefault(k, v)
+    known = [k for k in PARAM_ORDER if k in conf]
+    for k in known + sorted(k for k in conf if k not in PARAM_ORDER):
+        row[k] = conf[k]
+    if record["status"] == "ok":
+        stats = {k: v for k, v in record["stats"].items() if k not in STATS_SKIP}
+        flatten("", stats, row)
+        if "errors" in record:
+            flatten("error", record["errors"], row)
+    row["message"] = record.get("message", "")
+    row["tessim_sha256"] = tessim_sha[:16]
+    return row
+
+
+LEAD_COLUMNS = ["point", "key", "grids", "status"]
+# The figures a reader looks at first, right after the parameters.
+HEADLINE_STATS = ["triangles", "triangles_in", "vertices_out", "cycles", "cycles_per_vertex",
+                  "throughput", "bottleneck", "analytic.cycles_per_vertex", "analytic.bottleneck"]
+TRAIL_COLUMNS = ["message", "tessim_sha256"]
+TOP_LEVEL_STATS = {"triangles", "triangles_in", "vertices_out", "cycles", "cycles_per_vertex",
+                   "throughput", "bottleneck", "cpg_cycles_per_triangle", "wall_seconds"}
+
+
+def natural_key(name):
+    """int.blocks.10 after int.blocks.9."""
+    return [(0, int(p), "") if p.isdigit() else (1, 0, p) for p in name.split(".")]
+
+
+def columns_of(rows):
+    """Lead columns, parameters, headline statistics, the other statistics (natural order),
+    the error and cost columns, then message and binary hash."""
+    present = set()
+    for r in rows:
+        present.update(r)
+    params = [k for k in PARAM_ORDER if k in present]
+    rest = sorted(present - set(LEAD_COLUMNS) - set(params) - set(HEADLINE_STATS) - set(TRAIL_COLUMNS),
+                  key=natural_key)
+    stats = [k for k in rest if not k.startswith(("error.", "cost_"))]
+    extra = [k for k in rest if k.startswith("error.")] + [k for k in rest if k.startswith("cost_")]
+    # Configuration keys this script does not know yet are the undotted names that are not
+    # top-level statistics of tessim (only their column position depends on it).
+    unknown_params = [k for k in stats if "." not in k and k not in TOP_LEVEL_STATS]
+    stats = [k for k in stats if k not in unknown_params]
+    return ([k for k in LEAD_COLUMNS if k in present] + params + unknown_params +
+            [k for k in HEADLINE_STATS if k in present] + stats + extra +
+            [k for k in TRAIL_COLUMNS if k in present])
+
+
+def csv_value(v):
+    if v is None:
+        return ""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, float):
+        return repr(v)
+    return v
+
+
+def write_atomic(path, text):
+    path = Path(path)
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+
+
+def write_results(rows, out_csv):
+    out_csv = Path(out_csv)
+    cols = columns_of(rows)
+    import io
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(cols)
+    for r in rows:
+        w.writerow([csv_value(r.get(c)) for c in cols])
+    write_atomic(out_csv, buf.getvalue())
+    write_atomic(out_csv.with_suffix(".json"), json.dumps(rows, indent=1) + "\n")
+
+
+# --------------------------------------------------------------------------- progress
+
+def fmt_time(s):
+    if s is None or not math.isfinite(s):
+        return "--:--"
+    s = int(s + 0.5)
+    return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}" if s >= 3600 else f"{s // 60}:{s % 60:02d}"
+
+
+class Progress:
+    """Progress bar with ETA on stderr. ETA weighs each point by its expected simulated cycles."""
+
+    def __init__(self, total_points, cached, total_weight):
+        self.total = total_points
+        self.done = cached
+        self.cached = cached
+        self.total_weight = total_weight
+        self.done_weight = 0.0
+        self.start = time.monotonic()
+        self.tty = sys.stderr.isatty()
+        self.last = 0.0
+        self.failed = 0
+        self.draw(force=True)
+
+    def advance(self, weight, failed=False):
+        self.done += 1
+        self.done_weight += weight
+        self.failed += failed
+        self.draw()
+
+    def draw(self, force=False, final=False):
+        now = time.monotonic()
+        if not force and not final and now - self.last < (0.5 if self.tty else 15):
+            return
+        self.last = now
+        elapsed = now - self.start
+        frac = self.done / self.total if self.total else 1.0
+        eta = None
+        if self.done_weight > 0 and self.total_weight > 0:
+            eta = elapsed * (self.total_weight - self.done_weight) / self.done_weight
+        width = 30
+        bar = "#" * int(width * frac) + "." * (width - int(width * frac))
+        msg = (f"[{bar}] {self.done}/{self.total} points ({self.cached} cached"
+               f"{', %d rejected' % self.failed if self.failed else ''}) "
+               f"elapsed {fmt_time(elapsed)} ETA {fmt_time(0 if final else eta)}")
+        if self.tty:
+            sys.stderr.write("\r" + msg + ("\n" if final else ""))
+        else:
+            sys.stderr.write(msg + "\n")
+        sys.stderr.flush()
+
+
+def expected_cycles(params, triangles):
+    """Rough simulated cycles of a point (for the ETA only)."""
+    L = int(params.get("tess_factor", 4))
+    patch = (L + 1) * (L + 2) // 2
+    ops = 11 if params.get("normals") == "linear" else 14
+    n = int(params.get("int_blocks", 2))
+    k = float(params.get("gpe_cycles", 8)) / (1.0 - float(params.get("gpe_stall_prob", 0.0)))
+    w = 1 + int(params.get("coord_int_bits", 3)) + int(params.get("coord_frac_bits", 20))
+    cpg = 3 * (3 * w + 9) + 3
+    per_vertex = max(ops / n, k, cpg / patch, 1.0)
+    cost = triangles * patch * per_vertex
+    return cost * 3 if params["errors"] else cost
+
+
+# --------------------------------------------------------------------------- commands
+
+def parse_shard(text):
+    try:
+        i, n = (int(x) for x in text.split("/"))
+    except ValueError:
+        raise SpecError(f"--shard '{text}': expected i/n, e.g. 2/4")
+    if not 1 <= i <= n:
+        raise SpecError(f"--shard '{text}': need 1 <= i <= n")
+    return i, n
+
+
+def cmd_sweep(argv):
+    ap = argparse.ArgumentParser(prog="sweep.py", description="Run a parameter sweep of tessim sim.",
+                                 epilog="See the module docstring (head of this file) for the spec format.")
+    ap.add_argument("spec", help="sweep specification (JSON)")
+    ap.add_argument("-o", "--output", required=True, help="results CSV (a .json with the same rows is written next to it)")
+    ap.add_argument("--jobs", "-j", type=int, default=os.cpu_count() or 1, help="points run in parallel (default: cores)")
+    ap.add_argument("--shard", help="i/n: run only every n-th point starting at the i-th (1-based)")
+    ap.add_argument("--cache", help="cache directory (default: OUTPUT.cache)")
+    ap.add_argument("--tessim", default=str(REPO / "build" / "bin" / "tessim"), help="tessim binary (default: build/bin/tessim)")
+    args = ap.parse_args(argv)
+
+    try:
+        spec_path = Path(args.spec)
+        try:
+            spec = json.loads(spec_path.read_text())
+        except (OSError, json.JSONDecodeError) as e:
+            raise SpecError(f"{args.spec}: {e}")
+        points = expand(spec, spec_path.resolve().parent)
+        shard = parse_shard(args.shard) if args.shard else (1, 1)
+        if args.jobs < 1:
+            raise SpecError("--jobs must be at least 1")
+        tessim = Path(args.tessim)
+        if not os.access(tessim, os.X_OK):
+            raise SpecError(f"tessim binary '{tessim}' not found (build it, or give --tessim)")
+    except SpecError as e:
+        print(f"sweep.py: error: {e}", file=sys.stderr)
+        return 2
+
+    selected = [(i, p, g) for i, (p, g) in enumerate(points) if i % shard[1] == shard[0] - 1]
+    cache = Path(args.cache) if args.cache else Path(args.output).with_name(Path(args.output).name + ".cache")
+    cache.mkdir(parents=True, exist_ok=True)
+    tessim_sha = file_sha256(tessim)
+
+    workdir = tempfile.mkdtemp(prefix="tessim-sweep-")
+    runner = Runner(tessim, workdir)
+    try:
+        meshes = sorted({p["mesh"] for _, p, _ in selected})
+        mesh_sha = {m: file_sha256(m) for m in meshes}
+        try:
+            triangles = {m: int(runner.mesh_info(m)["triangles"]) for m in meshes}
+        except (InputRejected, RuntimeError) as e:
+            print(f"sweep.py: error: {e}", file=sys.stderr)
+            return 2
+
+        keyed = [(i, p, g, point_key(p, mesh_sha[p["mesh"]], tessim_sha)) for i, p, g in selected]
+        records = {}
+        todo = []
+        for i, p, g, key in keyed:
+            path = cache / key[:2] / f"{key}.json"
+            if path.exists():
+                try:
+                    records[key] = json.loads(path.read_text())
+                    continue
+                except json.JSONDecodeError:
+                    pass  # a damaged entry is simply recomputed
+            todo.append((i, p, g, key))
+        unique_todo = list({key: (i, p, g, key) for i, p, g, key in todo}.values())
+        weights = {key: expected_cycles(p, triangles[p["mesh"]]) for _, p, _, key in unique_todo}
+        progress = Progress(len(keyed), len(keyed) - len(unique_todo), sum(weights.values()))
+
+        crashed = []
+        pool = concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs)
+        interrupted = False
+
+        def on_term(signum, frame):
+            raise KeyboardInterrupt
+
+        old_term = signal.signal(signal.SIGTERM, on_term)
+        try:
+            futures = {pool.submit(runner.point, p, key): (i, p, g, key) for i, p, g, key in unique_todo}
+            for fut in concurrent.futures.as_completed(futures):
+                i, p, g, key = futures[fut]
+                try:
+                    record = fut.result()
+                except Exception as e:  # a crash of tessim or of the measurement: not cached
+                    crashed.append((i, str(e)))
+                    progress.advance(weights[key], failed=True)
+                    continue
+                record["params"] = p
+                record["tessim_sha256"] = tessim_sha
+                path = cache / key[:2] / f"{key}.json"
+                path.parent.mkdir(exist_ok=True)
+                write_atomic(path, json.dumps(record))
+                records[key] = record
+                progress.advance(weights[key], failed=record["status"] != "ok")
+        except KeyboardInterrupt:
+            interrupted = True
+            pool.shutdown(wait=False, cancel_futures=True)
+            runner.stop()
+        finally:
+            signal.signal(signal.SIGTERM, old_term)
+            pool.shutdown(wait=True, cancel_futures=True)
+        progress.draw(final=True)
+        if interrupted:
+            print(f"sweep.py: interrupted; {len(records)} of {len(keyed)} points are in {cache}, "
+                  "rerun the same command to resume", file=sys.stderr)
+            return 130
+
+        rows = [make_row(i, p, g, key, records[key], tessim_sha) for i, p, g, key in keyed if key in records]
+        write_results(rows, args.output)
+        rejected = [r for r in rows if r["status"] != "ok"]
+        if rejected:
+            print(f"sweep.py: {len(rejected)} points rejected as bad input (status input_error), "
+                  f"first: point {rejected[0]['point']}: {rejected[0]['message']}", file=sys.stderr)
+        for i, msg in crashed:
+            print(f"sweep.py: point {i} failed: {msg}", file=sys.stderr)
+        print(f"sweep.py: {len(rows)} rows -> {args.output}, {Path(args.output).with_suffix('.json')}",
+              file=sys.stderr)
+        return 1 if crashed else 0
+    finally:
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+def read_rows(path):
+    path = Path(path)
+    if path.suffix == ".json":
+        return json.loads(path.read_text())
+    json_twin = path.with_suffix(".json")
+    if json_twin.exists():
+        return json.loads(json_twin.read_text())
+    with open(path, newline="") as f:
+        return [{k: v for k, v in r.items() if v != ""} for r in csv.DictReader(f)]
+
+
+def cmd_merge(argv):
+    ap = argparse.ArgumentParser(prog="sweep.py merge",
+                                 description="Merge the results of shards (CSV or JSON) into one table.")
+    ap.add_argument("parts", nargs="+", help="results of the shards (X.csv reads X.json when it exists)")
+    ap.add_argument("-o", "--output", required=True, help="merged CSV (and JSON next to it)")
+    args = ap.parse_args(argv)
+    rows, seen = [], set()
+    for part in args.parts:
+        for r in read_rows(part):
+            if r["key"] not in seen:
+                seen.add(r["key"])
+                rows.append(r)
+    rows.sort(key=lambda r: int(r["point"]))
+    write_results(rows, args.output)
+    print(f"sweep.py: merged {len(rows)} rows from {len(args.parts)} parts -> {args.output}", file=sys.stderr)
+    return 0
+
+
+def main(argv):
+    if argv and argv[0] == "merge":
+        return cmd_merge(argv[1:])
+    return cmd_sweep(argv)
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
