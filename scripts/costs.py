@@ -1,0 +1,237 @@
+#!/usr/bin/python3
+"""Hardware cost of every RTL configuration in a sweep's results, joined to its rows.
+
+    costs.py RESULTS.csv [-o OUT.csv] [--where KEY=V[,V...] ...] [--cache DIR] [--no-xilinx]
+
+For each distinct RTL configuration among the rows (int_blocks, int_latency, te_contexts,
+coord_int_bits, coord_frac_bits, bary_bits, tri_fifo_depth, vtx_fifo_depth; the normal mode is
+an input of the RTL and the GPE is not part of it) runs scripts/synth.sh, which synthesizes the
+whole unit, the CPG and one INT block with Yosys 0.23 (SPEC §10: generic `synth` cells and
+flip-flops, `stat -tech cmos` transistors after flip-flop legalisation, `synth_xilinx` LUT/FF/DSP,
+`ltp` logic depth after flatten). Adds to every row of a costed configuration:
+
+    cost_unit_*   whole unit (transistors, cells, flops, depth, xilinx_lut, xilinx_ff, xilinx_dsp, ...)
+    cost_cpg_*    the CPG alone
+    cost_int_*    one INT block alone
+    cost_int_all_transistors   N x one INT block
+    cost_rest_transistors      unit - CPG - N INT blocks (TE control, contexts, buffers, FIFOs)
+
+Rows of the gpe CPG mapping get the same figures (the RTL has a dedicated CPG; subtract cost_cpg_*
+for a unit whose CPG runs on the geometry engine).
+
+Synthesis takes minutes per configuration, so results are cached (default: docs/results/costs/,
+one JSON per configuration) under a SHA-256 of the configuration, the content of every RTL
+source, of synth.sh and the Yosys version: a changed RTL re-synthesizes, an unchanged one never.
+--where restricts the configurations costed (e.g. --where int_latency=1 te_contexts=4
+int_blocks=1,2,4; the key `grid` matches the rows of the named grids); rows outside it get no
+cost columns.
+
+Writes OUT.csv (default: RESULTS.csv in place) and its JSON twin, like scripts/sweep.py.
+"""
+
+import argparse
+import hashlib
+import json
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import sweep  # noqa: E402  (shared CSV/JSON writer and reader)
+
+REPO = Path(__file__).resolve().parent.parent
+CACHE_SCHEMA = 1
+
+# Row parameter -> tess_unit parameter.
+RTL_PARAMS = [
+    ("int_blocks", "IntBlocks"),
+    ("int_latency", "IntLatency"),
+    ("te_contexts", "Contexts"),
+    ("coord_int_bits", "CoordIntBits"),
+    ("coord_frac_bits", "CoordFracBits"),
+    ("bary_bits", "BaryBits"),
+    ("tri_fifo_depth", "TriFifoDepth"),
+    ("vtx_fifo_depth", "VtxFifoDepth"),
+]
+BLOCK_PREFIX = {"tess_unit": "cost_unit", "tess_cpg": "cost_cpg", "tess_int": "cost_int"}
+
+
+def parse_value(text):
+    for conv in (int, float):
+        try:
+            return conv(text)
+        except ValueError:
+            pass
+    return {"true": True, "false": False}.get(text, text)
+
+
+def parse_where(items):
+    where = {}
+    for item in items or []:
+        if "=" not in item:
+            raise ValueError(f"--where '{item}': expected KEY=VALUE[,VALUE...]")
+        key, values = item.split("=", 1)
+        where[key] = {parse_value(v) for v in values.split(",")}
+    return where
+
+
+def rtl_config(row):
+    return tuple((name, int(row[key])) for key, name in RTL_PARAMS)
+
+
+def describe(config):
+    c = dict(config)
+    return (f"N={c['IntBlocks']} latency={c['IntLatency']} V={c['Contexts']} "
+            f"Q{c['CoordIntBits']}.{c['CoordFracBits']} B={c['BaryBits']} "
+            f"FIFOs {c['TriFifoDepth']}/{c['VtxFifoDepth']}")
+
+
+def sources_digest(synth):
+    h = hashlib.sha256()
+    for path in sorted((REPO / "rtl").glob("tess_*.sv")) + [Path(synth)]:
+        h.update(path.name.encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
+
+
+def yosys_version():
+    try:
+        return subprocess.run(["yosys", "-V"], capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError) as e:
+        raise SystemExit(f"costs.py: error: yosys not available: {e}")
+
+
+def cache_key(config, digest, yosys, xilinx):
+    ident = {"schema": CACHE_SCHEMA, "params": dict(config), "sources_sha256": digest, "yosys": yosys,
+             "xilinx": xilinx}
+    return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
+
+
+def synthesize(synth, config, xilinx):
+    with tempfile.TemporaryDirectory(prefix="tessim-costs-") as tmp:
+        out = Path(tmp) / "costs.json"
+        args = ["bash", str(synth)]
+        for name, value in config:
+            args += ["-chparam", name, str(value)]
+        args += ["--json", str(out)]
+        if not xilinx:
+            args.append("--no-xilinx")
+        proc = subprocess.run(args, capture_output=True, text=True)
+        if proc.returncode != 0:
+            raise RuntimeError(f"synth.sh {describe(config)}: exit status {proc.returncode}:\n{proc.stderr.strip()}")
+        return json.loads(out.read_text())
+
+
+def cost_columns(result, n_blocks):
+    cols = {}
+    for block, entry in result["blocks"].items():
+        prefix = BLOCK_PREFIX.get(block)
+        if prefix is None:
+            continue
+        for k in ("transistors", "cells", "flops", "depth"):
+            if entry.get(k) is not None:
+                cols[f"{prefix}_{k}"] = entry[k]
+        for k, v in (entry.get("xilinx") or {}).items():
+            cols[f"{prefix}_xilinx_{k}"] = v
+    if "cost_int_transistors" in cols:
+        cols["cost_int_all_transistors"] = n_blocks * cols["cost_int_transistors"]
+        if "cost_unit_transistors" in cols and "cost_cpg_transistors" in cols:
+            cols["cost_rest_transistors"] = (cols["cost_unit_transistors"] - cols["cost_cpg_transistors"]
+                                             - cols["cost_int_all_transistors"])
+    cols["cost_synth_seconds"] = result.get("seconds")
+    return cols
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(prog="costs.py", description=__doc__.split("\n\n")[0])
+    ap.add_argument("results", help="results CSV of scripts/sweep.py (its JSON twin is read when present)")
+    ap.add_argument("-o", "--output", help="output CSV (default: overwrite RESULTS)")
+    ap.add_argument("--where", nargs="*", metavar="KEY=V[,V...]",
+                    help="cost only the configurations of rows matching all of these")
+    ap.add_argument("--cache", default=str(REPO / "docs" / "results" / "costs"), help="cache directory")
+    ap.add_argument("--synth", default=str(REPO / "scripts" / "synth.sh"), help="synthesis script")
+    ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx (faster; no LUT/FF/DSP columns)")
+    ap.add_argument("--dry-run", action="store_true", help="list the configurations and whether they are cached")
+    args = ap.parse_args(argv)
+
+    try:
+        where = parse_where(args.where)
+    except ValueError as e:
+        print(f"costs.py: error: {e}", file=sys.stderr)
+        return 2
+    if not Path(args.synth).exists():
+        print(f"costs.py: error: {args.synth} not found", file=sys.stderr)
+        return 2
+    rows = sweep.read_rows(args.results)
+    if rows and isinstance(rows[0].get("point"), str):  # a CSV without its JSON twin
+        rows = [{k: parse_value(v) for k, v in r.items()} for r in rows]
+
+    def matches(row, key, values):
+        if key == "grid":  # membership in the row's grids ("a;b")
+            return bool(set(str(row.get("grids", "")).split(";")) & {str(v) for v in values})
+        return row.get(key) in values
+
+    def selected(row):
+        return row.get("status") == "ok" and all(matches(row, k, vals) for k, vals in where.items())
+
+    configs = []
+    for r in rows:
+        if selected(r):
+            c = rtl_config(r)
+            if c not in configs:
+                configs.append(c)
+
+    xilinx = not args.no_xilinx
+    digest = sources_digest(args.synth)
+    yosys = yosys_version()
+    cache = Path(args.cache)
+    cache.mkdir(parents=True, exist_ok=True)
+    results = {}
+    missing = []
+    for c in configs:
+        path = cache / f"{cache_key(c, digest, yosys, xilinx)}.json"
+        if path.exists():
+            results[c] = json.loads(path.read_text())["result"]
+        else:
+            missing.append((c, path))
+    print(f"costs.py: {len(configs)} RTL configurations, {len(configs) - len(missing)} cached, "
+          f"{len(missing)} to synthesize", file=sys.stderr)
+    if args.dry_run:
+        for c in configs:
+            print(f"  {'cached ' if c in results else 'missing'}  {describe(c)}", file=sys.stderr)
+        return 0
+
+    start = time.monotonic()
+    for i, (c, path) in enumerate(missing):
+        t0 = time.monotonic()
+        print(f"costs.py: [{i + 1}/{len(missing)}] synthesizing {describe(c)} ...", file=sys.stderr, flush=True)
+        try:
+            result = synthesize(args.synth, c, xilinx)
+        except (RuntimeError, OSError, json.JSONDecodeError) as e:
+            print(f"costs.py: error: {e}", file=sys.stderr)
+            return 1
+        record = {"params": dict(c), "sources_sha256": digest, "yosys": yosys, "xilinx": xilinx, "result": result}
+        sweep.write_atomic(path, json.dumps(record, indent=1) + "\n")
+        results[c] = result
+        done = time.monotonic() - start
+        eta = done / (i + 1) * (len(missing) - i - 1)
+        print(f"costs.py: [{i + 1}/{len(missing)}] done in {time.monotonic() - t0:.0f} s, "
+              f"ETA {sweep.fmt_time(eta)}", file=sys.stderr, flush=True)
+
+    costed = 0
+    for r in rows:
+        for k in [k for k in r if k.startswith("cost_")]:
+            del r[k]
+        if selected(r):
+            r.update(cost_columns(results[rtl_config(r)], int(r["int_blocks"])))
+            costed += 1
+    out = args.output or args.results
+    sweep.write_results(rows, out)
+    print(f"costs.py: cost columns on {costed} of {len(rows)} rows -> {out}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
