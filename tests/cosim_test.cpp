@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "model/error.hpp"
 #include "model/mesh_io.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/cosim/cosim.hpp"
@@ -149,22 +150,29 @@ TEST(CosimInjectedBug, RoundingBugIsCaughtAtTheFirstDivergentCycle) {
 }
 
 TEST(CosimInjectedBug, DroppedStallIsCaught) {
-  CosimOptions o = options(2, 0.5, 3, 8);
+  // The fault needs a full VTX FIFO when a patch's last vertex retires: a fast CPG (linear
+  // normals), large patches and a slow, stalling GPE make the TE outrun its consumer.
+  CosimOptions o = options(2, 0.5, 4, 8);
   o.variant = "n2_bug2";
-  const auto stream = random_triangles(12, 8, o.unit.format, 4, 0.0);
+  o.unit.normals = NormalMode::Linear;
+  const auto stream = random_triangles(12, 8, o.unit.format, 8, 0.0);
   const CosimReport r = run_cosim(stream, o);
   ASSERT_TRUE(r.divergence.has_value()) << format_report(r, o);
   EXPECT_FALSE(r.passed);
   EXPECT_GT(r.divergence->cycle, 0u);
+  EXPECT_FALSE(run_cosim_until(stream, o, r.divergence->cycle).divergence.has_value());
+  // The fault-free build passes the same run.
+  o.variant = "n2";
+  expect_pass(run_cosim(stream, o), o);
 }
 
 TEST(CosimConfig, MismatchedConfigurationIsRejected) {
   CosimOptions o = options(2, 0.0, 1, 1);
   o.variant = "n3";  // the build has N = 3, the configuration N = 2
-  EXPECT_THROW(run_cosim(random_triangles(2, 1, o.unit.format, 2), o), InputError);
+  EXPECT_THROW(run_cosim(random_triangles(2, 1, o.unit.format, 2), o), tessim::InputError);
   o.variant = "n2";
   o.unit.int_latency = 2;  // no such build
-  EXPECT_THROW(run_cosim(random_triangles(2, 1, o.unit.format, 2), o), InputError);
+  EXPECT_THROW(run_cosim(random_triangles(2, 1, o.unit.format, 2), o), tessim::InputError);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@ void register_sim(CLI::App& app);
 void register_bench(CLI::App& app);
 #ifdef TESSIM_HAVE_COSIM
 void register_cosim(CLI::App& app);
+void register_rtlbench(CLI::App& app);
 #endif
 
 }  // namespace tessim::app

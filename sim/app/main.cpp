@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   tessim::app::register_bench(app);
 #ifdef TESSIM_HAVE_COSIM
   tessim::app::register_cosim(app);
+  tessim::app::register_rtlbench(app);
 #endif
   try {
     app.parse(argc, argv);

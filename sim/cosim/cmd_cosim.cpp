@@ -5,6 +5,7 @@
 
 #include "model/error.hpp"
 #include "model/mesh_io.hpp"
+#include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/app/commands.hpp"
 #include "sim/config.hpp"
