@@ -79,9 +79,11 @@ AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles) {
     p.fill_cycles = cpg_cycles + 3;
   } else {
     // Accept, C compute steps on spare GPE cycles, write: the CPG holds at least C + 2 cycles
-    // per triangle, and the GPE spends its C spare cycles on it instead of on vertices.
+    // per triangle. When the GPE's cycles bound the run it has no spare cycle while it has
+    // vertices, so each patch costs it its vertices, the C compute steps, and the CPG's write
+    // and next accept, two cycles in which it has neither a vertex nor a step to do.
     p.cpg = (cpg_cycles * spare_wait + 2) / P;
-    p.gpe = p.gpe_vertex + cpg_cycles * spare_wait / P;
+    p.gpe = p.gpe_vertex + (cpg_cycles * spare_wait + 2) / P;
     p.fill_cycles = cpg_cycles * spare_wait + 4;
   }
   p.dpg = 1.0;

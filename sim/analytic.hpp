@@ -18,7 +18,7 @@ struct AnalyticPrediction {
   double int_issue = 0;    // ops per vertex / N: every op takes an INT issue slot
   double te_chain = 0;     // (1 + S + Λ) / V: a context is held from allocation to reuse
   double cpg = 0;          // CPG cycles per triangle / vertices per patch
-  double gpe = 0;          // GPE cycles per vertex, plus the CPG's spare cycles in the gpe mapping
+  double gpe = 0;          // GPE cycles per vertex, plus the CPG's cycles per vertex in the gpe mapping
   double gpe_vertex = 0;   // GPE cycles per vertex alone: K - 1 + 1 / (1 - stall probability)
   double dpg = 1;          // one domain point allocated and one vertex retired per cycle
   int ops_per_vertex = 14;
