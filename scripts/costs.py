@@ -88,12 +88,23 @@ def describe(config):
             f"FIFOs {c['TriFifoDepth']}/{c['VtxFifoDepth']}")
 
 
-def sources_digest(synth):
+def snapshot_sources(synth, directory):
+    """Copies the RTL and the synthesis script into `directory` (rtl/, scripts/ as in the repo, so
+    synth.sh finds the RTL next to itself) and returns the copy of synth.sh and the SHA-256 of
+    what was copied. Every synthesis of the run reads this snapshot, so an RTL file edited while
+    the run goes on cannot end up under the digest of another version."""
     h = hashlib.sha256()
+    (directory / "rtl").mkdir()
+    (directory / "scripts").mkdir()
     for path in sorted((REPO / "rtl").glob("tess_*.sv")) + [Path(synth)]:
+        data = path.read_bytes()
         h.update(path.name.encode())
-        h.update(path.read_bytes())
-    return h.hexdigest()
+        h.update(data)
+        target = directory / ("scripts" if path == Path(synth) else "rtl") / path.name
+        target.write_bytes(data)
+    copy = directory / "scripts" / Path(synth).name
+    copy.chmod(0o755)
+    return copy, h.hexdigest()
 
 
 def yosys_version():
@@ -107,6 +118,18 @@ def cache_key(config, digest, yosys, xilinx):
     ident = {"schema": CACHE_SCHEMA, "params": dict(config), "sources_sha256": digest, "yosys": yosys,
              "xilinx": xilinx}
     return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
+
+
+def provenance():
+    """The commit the RTL was taken from, and whether rtl/ or synth.sh differed from it."""
+    def git(*args):
+        try:
+            return subprocess.run(["git", "-C", str(REPO), *args], capture_output=True, text=True,
+                                  check=True).stdout.strip()
+        except (OSError, subprocess.CalledProcessError):
+            return None
+    return {"commit": git("rev-parse", "HEAD"),
+            "uncommitted_changes": bool(git("status", "--porcelain", "rtl", "scripts/synth.sh"))}
 
 
 def synthesize(synth, config, xilinx):
@@ -184,8 +207,10 @@ def main(argv):
                 configs.append(c)
 
     xilinx = not args.no_xilinx
-    digest = sources_digest(args.synth)
+    snapshot = tempfile.TemporaryDirectory(prefix="tessim-costs-src-")
+    synth, digest = snapshot_sources(args.synth, Path(snapshot.name))
     yosys = yosys_version()
+    source = provenance()
     cache = Path(args.cache)
     cache.mkdir(parents=True, exist_ok=True)
     results = {}
@@ -208,11 +233,12 @@ def main(argv):
         t0 = time.monotonic()
         print(f"costs.py: [{i + 1}/{len(missing)}] synthesizing {describe(c)} ...", file=sys.stderr, flush=True)
         try:
-            result = synthesize(args.synth, c, xilinx)
+            result = synthesize(synth, c, xilinx)
         except (RuntimeError, OSError, json.JSONDecodeError) as e:
             print(f"costs.py: error: {e}", file=sys.stderr)
             return 1
-        record = {"params": dict(c), "sources_sha256": digest, "yosys": yosys, "xilinx": xilinx, "result": result}
+        record = {"params": dict(c), "sources_sha256": digest, "yosys": yosys, "xilinx": xilinx,
+                  "source": source, "result": result}
         sweep.write_atomic(path, json.dumps(record, indent=1) + "\n")
         results[c] = result
         done = time.monotonic() - start

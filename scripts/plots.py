@@ -547,55 +547,55 @@ def fig_errors(rows, out, mesh_info):
     w = [r for r in in_grid(rows, "widths") if r.get("error.position_max") is not None]
     if not w:
         return out.skip("error vs width", "no rows of grid 'widths' with errors")
+    from matplotlib.lines import Line2D
     fig, axes = plt.subplots(2, 2, figsize=(9, 6.4), sharex="col")
-    table = []
+    table = {}  # (mesh, F, B) -> row: each measured point once
     meshes = distinct(w, "mesh")
+    Bs_all = distinct(w, "bary_bits")
+    handles = []
+
+    def add_rows(pts):
+        for r in pts:
+            table[(mesh_name(r["mesh"]), r["coord_frac_bits"], r["bary_bits"])] = [
+                mesh_name(r["mesh"]), r["coord_int_bits"], r["coord_frac_bits"], r["bary_bits"],
+                1 + r["coord_int_bits"] + r["coord_frac_bits"], r["tess_factor"],
+                fmt(r["error.position_max"]), fmt(r["error.position_rms"]),
+                fmt(r["error.normal_angle_max"]), fmt(r["error.normal_angle_rms"]), r["cpg_cycles_per_triangle"]]
+
     for m_i, mesh in enumerate(meshes):
+        color = f"C{m_i}"
+        handles.append(Line2D([], [], color=color, marker="o", ms=3, label=mesh_name(mesh)))
         wm = [r for r in w if r["mesh"] == mesh and r["normals"] == "quadratic"]
         info = mesh_info(mesh)
-        # Left: coordinate fraction bits F, one line per B. Right: B at the largest F.
+        # Left: coordinate fraction bits F, solid at the largest B, dashed at the others.
         for B in distinct(wm, "bary_bits"):
             pts = sorted((r for r in wm if r["bary_bits"] == B), key=lambda r: r["coord_frac_bits"])
             if len(pts) < 3:
                 continue
             F = [r["coord_frac_bits"] for r in pts]
-            style = dict(color=f"C{m_i}", ls="-" if B == max(distinct(wm, "bary_bits")) else "--")
-            axes[0][0].plot(F, [r["error.position_max"] for r in pts], marker="o", ms=3,
-                            label=f"{mesh_name(mesh)} B={B} max", **style)
-            axes[0][0].plot(F, [r["error.position_rms"] for r in pts], marker=".", ms=3, alpha=0.5,
-                            label=f"{mesh_name(mesh)} B={B} RMS", **style)
-            axes[1][0].plot(F, [r["error.normal_angle_max"] for r in pts], marker="o", ms=3,
-                            label=f"{mesh_name(mesh)} B={B} max", **style)
-            axes[1][0].plot(F, [r["error.normal_angle_rms"] for r in pts], marker=".", ms=3, alpha=0.5, **style)
-            if info and m_i == 0 and B == max(distinct(wm, "bary_bits")):
+            ls = "-" if B == max(Bs_all) else "--"
+            axes[0][0].plot(F, [r["error.position_max"] for r in pts], marker="o", ms=3, color=color, ls=ls)
+            axes[1][0].plot(F, [r["error.normal_angle_max"] for r in pts], marker="o", ms=3, color=color, ls=ls)
+            if info and B == max(Bs_all):
                 axes[0][0].plot(F, [arithmetic_bound(f, pts[0]["coord_int_bits"], info["half_extent"],
-                                                     info["diagonal"]) for f in F],
-                                color="k", lw=0.8, ls=":", label=f"arithmetic bound ({mesh_name(mesh)})")
-            for r in pts:
-                table.append([mesh_name(mesh), r["coord_int_bits"], r["coord_frac_bits"], r["bary_bits"],
-                              1 + r["coord_int_bits"] + r["coord_frac_bits"], r["tess_factor"],
-                              fmt(r["error.position_max"]), fmt(r["error.position_rms"]),
-                              fmt(r["error.normal_angle_max"]), fmt(r["error.normal_angle_rms"]),
-                              r["cpg_cycles_per_triangle"]])
+                                                     info["diagonal"]) for f in F], color=color, lw=0.8, ls=":")
+            add_rows(pts)
+        # Right: barycentric bits B at the largest F.
         Fmax = max(distinct(wm, "coord_frac_bits"))
         pts = sorted((r for r in wm if r["coord_frac_bits"] == Fmax), key=lambda r: r["bary_bits"])
         if len(pts) >= 3:
             Bs = [r["bary_bits"] for r in pts]
-            axes[0][1].plot(Bs, [r["error.position_max"] for r in pts], "o-", ms=3, color=f"C{m_i}",
-                            label=f"{mesh_name(mesh)} max")
-            axes[0][1].plot(Bs, [r["error.position_rms"] for r in pts], ".-", ms=3, alpha=0.5, color=f"C{m_i}",
-                            label=f"{mesh_name(mesh)} RMS")
-            axes[1][1].plot(Bs, [r["error.normal_angle_max"] for r in pts], "o-", ms=3, color=f"C{m_i}",
-                            label=f"{mesh_name(mesh)} max")
-            axes[1][1].plot(Bs, [r["error.normal_angle_rms"] for r in pts], ".-", ms=3, alpha=0.5, color=f"C{m_i}")
-            for r in pts:
-                if r["bary_bits"] not in distinct(wm, "bary_bits")[-1:]:
-                    table.append([mesh_name(mesh), r["coord_int_bits"], r["coord_frac_bits"], r["bary_bits"],
-                                  1 + r["coord_int_bits"] + r["coord_frac_bits"], r["tess_factor"],
-                                  fmt(r["error.position_max"]), fmt(r["error.position_rms"]),
-                                  fmt(r["error.normal_angle_max"]), fmt(r["error.normal_angle_rms"]),
-                                  r["cpg_cycles_per_triangle"]])
-            axes[0][1].set_title(f"barycentric bits B (F = {Fmax})", fontsize=8)
+            axes[0][1].plot(Bs, [r["error.position_max"] for r in pts], "o-", ms=3, color=color)
+            axes[0][1].plot(Bs, [r["error.position_rms"] for r in pts], "-", lw=0.8, alpha=0.5, color=color)
+            axes[1][1].plot(Bs, [r["error.normal_angle_max"] for r in pts], "o-", ms=3, color=color)
+            axes[1][1].plot(Bs, [r["error.normal_angle_rms"] for r in pts], "-", lw=0.8, alpha=0.5, color=color)
+            add_rows(pts)
+            axes[0][1].set_title(f"barycentric bits B (F = {Fmax}); thin: RMS", fontsize=8)
+    f_sweep_bs = [B for B in Bs_all if len({r["coord_frac_bits"] for r in w if r["bary_bits"] == B}) >= 3]
+    handles += [Line2D([], [], color="0.3", ls="-", label=f"max, B = {max(Bs_all)}")]
+    handles += [Line2D([], [], color="0.3", ls="--", label=f"max, B = {B}") for B in f_sweep_bs if B != max(Bs_all)]
+    handles += [Line2D([], [], color="0.3", ls=":", lw=0.8,
+                       label="arithmetic bound (number-formats §5.1;\nno input or weight quantization)")]
     axes[0][0].set_title("coordinate fraction bits F (I = 3, W = 4 + F)", fontsize=8)
     axes[0][0].set_ylabel("position error / bbox diagonal")
     axes[1][0].set_ylabel("normal angle error (rad)")
@@ -603,16 +603,23 @@ def fig_errors(rows, out, mesh_info):
     axes[1][1].set_xlabel("B")
     for ax in axes.flat:
         ax.set_yscale("log")
-    axes[0][0].legend(fontsize=6)
-    axes[0][1].legend(fontsize=6)
-    fig.suptitle(f"Fixed-point error of the unit against the float64 reference, per output vertex "
+    axes[0][0].legend(handles=handles, fontsize=6)
+    fig.suptitle(f"Fixed-point error of the unit against the float64 reference, worst output vertex "
                  f"({workload(w, 'tess_factor', 'normals')}; tessim sim -o vs tessim tessellate)", fontsize=8)
     out.save(fig, "error_vs_width")
+    table = [table[k] for k in sorted(table)]
     out.table("Fixed-point error against the float64 reference",
               ["mesh", "I", "F", "B", "W", "L", "position max", "position RMS", "normal angle max (rad)",
                "normal angle RMS (rad)", "C (CPG cycles)"], table,
               note="Positions relative to the input mesh's bounding-box diagonal; normals as angles. "
                    "Every output vertex of the mesh is compared.")
+    wn = [r for r in in_grid(rows, "widths_normals") if r.get("error.position_max") is not None]
+    if wn:
+        out.table("Fixed-point error by normal mode (worst vertex; positions / diagonal, normals in rad)",
+                  ["mesh", "normals", "F", "B", "position max", "normal angle max", "normal angle RMS"],
+                  [[mesh_name(r["mesh"]), r["normals"], r["coord_frac_bits"], r["bary_bits"],
+                    fmt(r["error.position_max"]), fmt(r["error.normal_angle_max"]), fmt(r["error.normal_angle_rms"])]
+                   for r in sorted(wn, key=lambda r: (mesh_name(r["mesh"]), r["normals"], r["coord_frac_bits"]))])
 
 
 # Bus formats of SPEC §6 (seed 000 §5): the host sends float32 positions and normals and 32-bit
@@ -647,7 +654,8 @@ def bus_traffic(rows, out, topology):
         unit_in = T * (18 * W + 7 + 32) / 8
         unit_out = r["vertices_out"] * (6 * W + 2 * (B + 1) + 3 * 7 + 32 + 1 + 2) / 8
         table.append([L, T * L * L, welded, r["vertices_out"], fmt_kb(coarse / 1e3), fmt_kb(tess / 1e3),
-                      fmt(tess / coarse, 3), fmt_kb((tess - coarse) / 1e3), fmt_kb(unit_in / 1e3),
+                      fmt_kb(tess / coarse) if tess / coarse >= 1000 else fmt(tess / coarse, 3),
+                      fmt_kb((tess - coarse) / 1e3), fmt_kb(unit_in / 1e3),
                       fmt_kb(unit_out / 1e3)])
     out.table(f"Bus traffic saved by tessellating in the unit ({mesh_name(mesh)}: {V} vertices, {E} edges, "
               f"{T} triangles)",

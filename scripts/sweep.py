@@ -39,9 +39,9 @@ independent jobs of a batch scheduler. Combine the parts with `sweep.py merge pa
 (rows sorted by their index in the full spec, column `point`), or point every job at one shared
 --cache and rerun the unsharded spec once: it only collects.
 
-Exit status: 0 when every point ran (points the tool rejects as bad input, e.g. widths too narrow
+Exit status: 0 when the points ran (points the tool rejects as bad input, e.g. widths too narrow
 for the mesh, are rows with status `input_error` and its message); 1 when a run crashed or was
-killed; 2 for a bad spec or command line.
+killed, or when every point was rejected (a misspelt key); 2 for a bad spec or command line.
 """
 
 import argparse
@@ -220,7 +220,8 @@ class Runner:
             try:
                 self.run(args, f"sim {params['mesh']}")
             except InputRejected as e:
-                return {"status": "input_error", "message": str(e)}
+                # The config file is a temporary of this run: name the point's configuration instead.
+                return {"status": "input_error", "message": str(e).replace(str(cfg), "the point's configuration")}
             record = {"status": "ok", "stats": json.loads(stats.read_text())}
             if params["errors"]:
                 conf = record["stats"]["config"]
@@ -568,7 +569,8 @@ def cmd_sweep(argv):
             print(f"sweep.py: point {i} failed: {msg}", file=sys.stderr)
         print(f"sweep.py: {len(rows)} rows -> {args.output}, {Path(args.output).with_suffix('.json')}",
               file=sys.stderr)
-        return 1 if crashed else 0
+        # Every point rejected is a broken spec (a misspelt key, a mesh the widths cannot hold).
+        return 1 if crashed or (rows and len(rejected) == len(rows)) else 0
     finally:
         shutil.rmtree(workdir, ignore_errors=True)
 
