@@ -1,0 +1,218 @@
+#!/usr/bin/env bash
+# Hardware cost of one configuration of the unit with Yosys (SPEC §10, docs/rtl.md):
+#   - generic `synth` cell count and flip-flops,
+#   - `stat -tech cmos` transistor estimate after flip-flop legalisation (async2sync;
+#     dfflegalize -cell $_DFF_P_ 01), so that every cell has a cost and the total is exact,
+#   - `synth_xilinx` LUT / FF / DSP / CARRY4 counts,
+#   - logic depth: `ltp -noff` on the flattened generic netlist (a critical-path proxy).
+# For the whole unit and, unless --no-blocks, for the blocks tess_cpg and tess_int on their own
+# (each with `hierarchy -top` on that module, parameters as inside the unit).
+#
+# Usage: scripts/synth.sh [options] [N] [-chparam NAME VALUE ...]
+#   N                   INT blocks (IntBlocks), default tess_pkg::IntBlocks
+#   -chparam NAME VALUE any other parameter of tess_unit (CoordIntBits, CoordFracBits,
+#                       BaryBits, IntLatency, Contexts, TriFifoDepth, VtxFifoDepth)
+#   --json FILE         also write the numbers as JSON (FILE = - for stdout only)
+#   --no-blocks         only the whole unit
+#   --no-xilinx         skip synth_xilinx
+#   --jobs J            Yosys runs in parallel (default 2)
+#   --keep DIR          keep the Yosys logs and reports in DIR
+set -euo pipefail
+
+usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; }
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+json=""
+blocks=1
+xilinx=1
+jobs=2
+keep=""
+declare -A params=()
+declare -a order=()
+
+set_param() {
+  [[ -v "params[$1]" ]] || order+=("$1")
+  params[$1]=$2
+}
+
+while (($#)); do
+  case "$1" in
+    -h|--help) usage; exit 0 ;;
+    --json) json=${2:?--json needs a file}; shift 2 ;;
+    --no-blocks) blocks=0; shift ;;
+    --no-xilinx) xilinx=0; shift ;;
+    --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
+    --keep) keep=${2:?--keep needs a directory}; shift 2 ;;
+    -chparam)
+      [[ $# -ge 3 ]] || { echo "synth.sh: -chparam needs NAME VALUE" >&2; exit 2; }
+      set_param "$2" "$3"; shift 3 ;;
+    [0-9]*) set_param IntBlocks "$1"; shift ;;
+    *) echo "synth.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+for name in "${order[@]}"; do
+  [[ ${params[$name]} =~ ^[0-9]+$ ]] || { echo "synth.sh: $name must be a number" >&2; exit 2; }
+  case "$name" in
+    CoordIntBits|CoordFracBits|BaryBits|IntBlocks|IntLatency|Contexts|TriFifoDepth|VtxFifoDepth) ;;
+    *) echo "synth.sh: tess_unit has no parameter '$name'" >&2; exit 2 ;;
+  esac
+done
+
+command -v yosys > /dev/null || { echo "synth.sh: yosys not found" >&2; exit 2; }
+
+# Package first, then the modules in name order.
+sources="$root/rtl/tess_pkg.sv"
+while IFS= read -r f; do sources+=" $f"; done < <(ls "$root"/rtl/tess_*.sv | grep -v '/tess_pkg\.sv$' | LC_ALL=C sort)
+
+if [[ -n $keep ]]; then
+  mkdir -p "$keep"
+  work=$(cd "$keep" && pwd)
+else
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+fi
+
+# Parameter defaults from the package, to derive the blocks' parameters.
+pkg_default() { sed -n "s/^ *localparam int unsigned $1 *= *\([0-9]*\);.*/\1/p" "$root/rtl/tess_pkg.sv"; }
+value() { if [[ -v "params[$1]" ]]; then echo "${params[$1]}"; else pkg_default "$1"; fi; }
+I=$(value CoordIntBits); F=$(value CoordFracBits); B=$(value BaryBits)
+N=$(value IntBlocks); LAT=$(value IntLatency); V=$(value Contexts)
+W=$((1 + I + F))
+idx_bits=1; while (( (1 << idx_bits) < V )); do idx_bits=$((idx_bits + 1)); done
+
+# chparam -set before hierarchy (hierarchy -chparam trips an assertion in Yosys 0.23 when a
+# value equals the default of a module with submodules).
+chparams_for() {
+  local module=$1 out="" name
+  case "$module" in
+    tess_unit)
+      for name in "${order[@]}"; do out+="chparam -set $name ${params[$name]} tess_unit; "; done ;;
+    tess_cpg)
+      out="chparam -set CoordIntBits $I -set CoordFracBits $F tess_cpg; " ;;
+    tess_int)
+      out="chparam -set CoordWidth $W -set BaryBits $B -set Latency $LAT -set TagWidth $((idx_bits + 4)) tess_int; " ;;
+  esac
+  echo "$out"
+}
+
+generic_job() {  # module
+  local m=$1
+  yosys -q -l "$work/$m.generic.log" -p "read_verilog -sv $sources; $(chparams_for "$m") \
+    hierarchy -check -top $m; synth -flatten; tee -q -o $work/$m.cells stat; \
+    async2sync; dfflegalize -cell \$_DFF_P_ 01; tee -q -o $work/$m.cmos stat -tech cmos; \
+    tee -q -o $work/$m.ltp ltp -noff" > /dev/null
+}
+
+xilinx_job() {  # module
+  local m=$1
+  yosys -q -l "$work/$m.xilinx.log" -p "read_verilog -sv $sources; $(chparams_for "$m") \
+    hierarchy -check -top $m; synth_xilinx -flatten; tee -q -o $work/$m.xil stat" > /dev/null
+}
+
+modules=(tess_unit)
+((blocks)) && modules+=(tess_cpg tess_int)
+tasks=()
+for m in "${modules[@]}"; do
+  tasks+=("generic_job $m")
+  ((xilinx)) && tasks+=("xilinx_job $m")
+done
+
+start=$SECONDS
+failed=0
+running=0
+for t in "${tasks[@]}"; do
+  if ((running >= jobs)); then
+    wait -n || failed=1
+    running=$((running - 1))
+  fi
+  $t &
+  running=$((running + 1))
+done
+while ((running > 0)); do
+  wait -n || failed=1
+  running=$((running - 1))
+done
+if ((failed)); then
+  echo "synth.sh: a Yosys run failed; logs:" >&2
+  for log in "$work"/*.log; do echo "== $log" >&2; grep -i -m5 "error" "$log" >&2 || true; done
+  [[ -n $keep ]] || echo "(rerun with --keep DIR to keep the logs)" >&2
+  exit 1
+fi
+elapsed=$((SECONDS - start))
+
+param_text=""
+for name in "${order[@]}"; do param_text+="$name=${params[$name]} "; done
+
+python3 - "$work" "$json" "$elapsed" "$xilinx" "${param_text% }" "I=$I F=$F B=$B N=$N latency=$LAT V=$V" \
+  "${modules[@]}" <<'PY'
+import json, os, re, sys
+
+work, json_path, elapsed, xilinx, overrides, config = sys.argv[1:7]
+modules = sys.argv[7:]
+xilinx = xilinx == "1"
+
+def read(path):
+    with open(path) as f:
+        return f.read()
+
+def cell_table(text):
+    """Cell type -> count from a `stat` report (flattened: one module)."""
+    cells = {}
+    total = None
+    for line in text.splitlines():
+        m = re.match(r"\s+Number of cells:\s+(\d+)", line)
+        if m:
+            total = int(m.group(1))
+            continue
+        m = re.match(r"\s+(\S+)\s+(\d+)$", line)
+        if m and total is not None:
+            cells[m.group(1)] = int(m.group(2))
+    return total, cells
+
+result = {"yosys": "0.23", "overrides": overrides, "config": config, "seconds": int(elapsed), "blocks": {}}
+for m in modules:
+    total, cells = cell_table(read(os.path.join(work, m + ".cells")))
+    flops = sum(v for k, v in cells.items() if re.match(r"\$_(S?DFF|DFFE|SDFFE|SDFFCE|ALDFF|DFFSR|DLATCH)", k))
+    cmos = read(os.path.join(work, m + ".cmos"))
+    t = re.search(r"Estimated number of transistors:\s+(\d+)(\+?)", cmos)
+    ltp = re.search(r"Longest topological path in \S+ \(length=(\d+)\)", read(os.path.join(work, m + ".ltp")))
+    entry = {
+        "cells": total,
+        "flops": flops,
+        "transistors": int(t.group(1)) if t else None,
+        "transistors_exact": bool(t) and t.group(2) == "",
+        "depth": int(ltp.group(1)) if ltp else None,
+    }
+    if xilinx:
+        _, xc = cell_table(read(os.path.join(work, m + ".xil")))
+        entry["xilinx"] = {
+            "lut": sum(v for k, v in xc.items() if re.match(r"LUT\d$", k)),
+            "ff": sum(v for k, v in xc.items() if re.match(r"FD[A-Z]*$", k)),
+            "dsp": sum(v for k, v in xc.items() if k.startswith("DSP48")),
+            "carry4": xc.get("CARRY4", 0),
+            "muxf": sum(v for k, v in xc.items() if k.startswith("MUXF")),
+            "srl": sum(v for k, v in xc.items() if k.startswith("SRL")),
+        }
+    result["blocks"][m] = entry
+
+if json_path != "-":
+    print(f"Yosys 0.23 synthesis of tess_unit ({config}; {result['seconds']} s)")
+    head = f"{'block':<10} {'cells':>8} {'flops':>7} {'transistors':>12} {'depth':>6}"
+    if xilinx:
+        head += f" {'LUT':>7} {'FF':>6} {'DSP':>4} {'CARRY4':>7}"
+    print(head)
+    for m, e in result["blocks"].items():
+        tr = f"{e['transistors']}{'' if e['transistors_exact'] else '+'}"
+        line = f"{m:<10} {e['cells']:>8} {e['flops']:>7} {tr:>12} {e['depth'] if e['depth'] is not None else '?':>6}"
+        if xilinx:
+            x = e["xilinx"]
+            line += f" {x['lut']:>7} {x['ff']:>6} {x['dsp']:>4} {x['carry4']:>7}"
+        print(line)
+if json_path:
+    text = json.dumps(result, indent=2)
+    if json_path == "-":
+        print(text)
+    else:
+        with open(json_path, "w") as f:
+            f.write(text + "\n")
+PY
