@@ -53,7 +53,6 @@ module tess_te #(
   localparam int unsigned OpW     = 4;
   localparam int unsigned TagW    = IdxW + OpW;
   localparam int unsigned NumCand = V * NumOps;
-  localparam int unsigned SelW    = $clog2(N + 1);
 
   logic mode_linear;
   assign mode_linear = (mode_i == tess_pkg::ModeLinear);
@@ -120,31 +119,31 @@ module tess_te #(
     assign ready[a*NumOps +: NumOps] = (CntW'(a) < count_q) ? rdy : '0;
   end
 
-  // The first N ready candidates issue, the i-th onto INT block i.
+  // The first N ready candidates issue, the i-th onto INT block i: N rounds of isolating the
+  // lowest set bit (x & -x, a carry chain that synthesis builds with lookahead) and clearing
+  // it, then a one-hot to (age, op) encoder per slot.
   logic [N-1:0]       slot_valid;
   (* mem2reg *) logic [IdxW-1:0]    slot_age [N];
   (* mem2reg *) logic [OpW-1:0]     slot_op [N];
+  (* mem2reg *) logic [NumCand-1:0] slot_hot [N];
+  logic [NumCand-1:0] remaining;
   logic [NumCand-1:0] selected;
-  logic [SelW-1:0]    taken;
   always_comb begin
-    taken    = '0;
-    selected = '0;
+    remaining = ready;
     for (int i = 0; i < N; i++) begin
-      slot_valid[i] = 1'b0;
-      slot_age[i]   = '0;
-      slot_op[i]    = '0;
+      slot_hot[i]   = remaining & (~remaining + NumCand'(1));
+      slot_valid[i] = (remaining != '0);
+      remaining     = remaining & ~slot_hot[i];
     end
-    for (int c = 0; c < NumCand; c++) begin
-      if (ready[c] && (taken < SelW'(N))) begin
-        for (int i = 0; i < N; i++) begin
-          if (taken == SelW'(i)) begin
-            slot_valid[i] = 1'b1;
-            slot_age[i]   = IdxW'(c / NumOps);
-            slot_op[i]    = OpW'(c % NumOps);
-          end
-        end
-        selected[c] = 1'b1;
-        taken = taken + SelW'(1);
+    selected = ready & ~remaining;
+  end
+  for (genvar i = 0; i < N; i++) begin : g_slot
+    always_comb begin
+      slot_age[i] = '0;
+      slot_op[i]  = '0;
+      for (int c = 0; c < NumCand; c++) begin
+        slot_age[i] |= slot_hot[i][c] ? IdxW'(c / NumOps) : '0;
+        slot_op[i]  |= slot_hot[i][c] ? OpW'(c % NumOps) : '0;
       end
     end
   end

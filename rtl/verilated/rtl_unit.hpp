@@ -45,7 +45,9 @@ class RtlUnit {
   // assertion of a --assert build fails during the cycle.
   virtual void tick(const sim::UnitInputs& in) = 0;
 
-  // FST waveform: open a file, dump only while enabled (enabled by open_wave), close.
+  // FST waveform: open a file, dump only while enabled (enabled by open_wave), close. Each
+  // tick dumps at time 2 x cycle (inputs applied, clock low) and 2 x cycle + 1 (after the
+  // rising edge); after a second reset the time continues where the file left off.
   virtual void open_wave(const std::filesystem::path& path) = 0;
   virtual void close_wave() = 0;
   virtual void set_wave_enabled(bool enabled) = 0;
