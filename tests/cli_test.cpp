@@ -18,6 +18,7 @@
 
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
+#include "tests/temp_dir.hpp"
 #include "model/pattern.hpp"
 #include "model/pn.hpp"
 
@@ -28,26 +29,7 @@ namespace fs = std::filesystem;
 
 const fs::path kWuson = "/usr/share/assimp/models/PLY/Wuson.ply";
 
-class TempDir {
- public:
-  TempDir() {
-    static int instances = 0;
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("tessim_cli_" + std::to_string(::getpid()) + "_" + info->test_suite_name() +
-                                         "_" + info->name() + "_" + std::to_string(instances++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  bool empty() const { return fs::directory_iterator(path_) == fs::directory_iterator(); }
-
- private:
-  fs::path path_;
-};
+using tessim::testing::TempDir;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -17,6 +17,7 @@
 #include "model/error.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
+#include "tests/temp_dir.hpp"
 #include "model/pattern.hpp"
 
 namespace tessim {
@@ -26,36 +27,7 @@ namespace fs = std::filesystem;
 
 const fs::path kModels = "/usr/share/assimp/models";
 
-// A fresh directory per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    static int instances = 0;
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("tessim_mesh_io_" + std::to_string(::getpid()) + "_" + info->test_suite_name() +
-                                         "_" + info->name() + "_" + std::to_string(instances++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  fs::path write(const std::string& name, const std::string& contents) const {
-    const fs::path p = path_ / name;
-    std::ofstream(p, std::ios::binary) << contents;
-    return p;
-  }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path_)) names.push_back(e.path().filename().string());
-    return names;
-  }
-
- private:
-  fs::path path_;
-};
+using tessim::testing::TempDir;
 
 // Loads `file` expecting an InputError whose message contains every one of `parts`.
 ::testing::AssertionResult rejects(const fs::path& file, const std::vector<std::string>& parts) {
