@@ -177,6 +177,8 @@ def main(argv):
     ap.add_argument("--synth", default=str(REPO / "scripts" / "synth.sh"), help="synthesis script")
     ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx (faster; no LUT/FF/DSP columns)")
     ap.add_argument("--dry-run", action="store_true", help="list the configurations and whether they are cached")
+    ap.add_argument("--cached-only", action="store_true",
+                    help="join the cached configurations only, synthesize nothing (the others get no cost columns)")
     args = ap.parse_args(argv)
 
     try:
@@ -228,6 +230,8 @@ def main(argv):
             print(f"  {'cached ' if c in results else 'missing'}  {describe(c)}", file=sys.stderr)
         return 0
 
+    if args.cached_only:
+        missing = []
     start = time.monotonic()
     for i, (c, path) in enumerate(missing):
         t0 = time.monotonic()
@@ -250,7 +254,7 @@ def main(argv):
     for r in rows:
         for k in [k for k in r if k.startswith("cost_")]:
             del r[k]
-        if selected(r):
+        if selected(r) and rtl_config(r) in results:
             r.update(cost_columns(results[rtl_config(r)], int(r["int_blocks"])))
             costed += 1
     out = args.output or args.results

@@ -213,7 +213,7 @@ def fig_throughput_vs_n(rows, out):
     ax.set_title(f"Throughput vs INT blocks, one line per GPE rate K ({workload(b, 'mesh', 'tess_factor', 'int_latency', 'te_contexts', 'normals', 'cpg_mapping')})\n"
                  "solid: cycle model; dotted: analytical model; square: smallest N within 1 % of the best at that K",
                  fontsize=8)
-    ax.legend(ncol=2, loc="lower right")
+    ax.legend(loc="center left", bbox_to_anchor=(1.01, 0.5))
     out.save(fig, "throughput_vs_n")
     out.table("Balance: throughput (vertices/cycle) and the smallest sufficient N per GPE rate K",
               ["K", "N = 1", "N = 2", "best over N", "GPE limit 1/K", "smallest N within 1 % of best",
@@ -243,18 +243,22 @@ def fig_utilisation_vs_n(rows, out):
         ax.set_ylabel("%")
         ax.set_ylim(0, 105)
         ax.set_title(title, fontsize=9)
-    axes[1].legend(ncol=2, fontsize=7)
+    axes[1].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.suptitle(f"Utilisation vs N ({workload(b, 'mesh', 'tess_factor', 'int_latency', 'te_contexts', 'normals')})",
                  fontsize=9)
     out.save(fig, "utilisation_vs_n")
 
 
+PARETO_MARGIN = 0.005  # a dearer configuration must be more than 0.5 % faster to count as faster
+
+
 def pareto(points):
-    """Points (cost, throughput, ...) not dominated by a cheaper-or-equal, faster-or-equal one."""
+    """Points (cost, throughput, ...) that no cheaper-or-equal point matches in throughput
+    (within PARETO_MARGIN: fill and drain make equal rates differ in the last digits)."""
     front = []
-    best = -1.0
+    best = 0.0
     for p in sorted(points, key=lambda p: (p[0], -p[1])):
-        if p[1] > best * (1 + 1e-9):
+        if p[1] > best * (1 + PARETO_MARGIN):
             front.append(p)
             best = p[1]
     return front
@@ -267,11 +271,11 @@ def fig_cost(rows, out):
         return out.skip("throughput vs transistors", "no costed rows (run scripts/costs.py)")
     Ks = [K for K in (1, 4, 6, 8, 12) if any(r["gpe_cycles"] == K for r in b)]
     if not Ks:
-        Ks = distinct(b, "gpe_cycles")[:4]
-    fig, axes = plt.subplots(1, len(Ks), figsize=(3.3 * len(Ks), 3.8), sharey=False)
-    if len(Ks) == 1:
-        axes = [axes]
+        Ks = distinct(b, "gpe_cycles")[:5]
+    fig, grid = plt.subplots(2, 3, figsize=(11, 7))
+    axes = list(grid.flat)[:len(Ks)]
     table = []
+    efficiency = {}
     for ax, K in zip(axes, Ks):
         pts = []
         for r in b:
@@ -283,7 +287,7 @@ def fig_cost(rows, out):
             if r["coord_frac_bits"] != 20 or r["bary_bits"] != 16:
                 label += f" F{r['coord_frac_bits']} B{r['bary_bits']}"
             pts.append((r["cost_unit_transistors"] / 1e6, r["throughput"], label, r))
-        # One point per RTL configuration (several meshes / modes: keep the first row's figure).
+        # One point per RTL configuration.
         seen, uniq = set(), []
         for p in sorted(pts, key=lambda p: p[2]):
             if p[2] not in seen:
@@ -294,25 +298,56 @@ def fig_cost(rows, out):
         ax.step([p[0] for p in front], [p[1] for p in front], "-", where="post", color="C3", lw=1)
         ax.plot([p[0] for p in front], [p[1] for p in front], "o", color="C3", ms=6, label="Pareto front")
         for p in uniq:
-            ax.annotate(p[2], (p[0], p[1]), textcoords="offset points", xytext=(3, 3), fontsize=6)
+            ax.annotate(p[2], (p[0], p[1]), textcoords="offset points", xytext=(3, -9), fontsize=6)
+            efficiency.setdefault(p[2], {})[K] = (p[1] / p[0], p[0])
         ax.axhline(1.0 / K, ls="--", color="0.4", lw=0.8)
         ax.set_title(f"K = {K} (dashed: GPE limit 1/K)", fontsize=8)
-        ax.set_xlabel("transistors, whole unit (millions, Yosys stat -tech cmos)")
+        ax.set_xlabel("whole unit, million transistors")
         ax.set_ylabel("vertices / cycle")
         for p in front:
             r = p[3]
-            table.append([K, p[2], fmt(p[0], 4), fmt(p[1], 4), fmt(r.get("cost_int_transistors", 0) / 1e6, 3),
+            table.append([K, p[2], fmt(p[0], 4), fmt(p[1], 4), fmt(p[1] / p[0], 4),
+                          fmt(r.get("cost_int_transistors", 0) / 1e6, 3),
                           fmt(r.get("cost_cpg_transistors", 0) / 1e6, 3), r.get("cost_unit_depth", "–"),
                           r.get("cost_unit_xilinx_lut", "–")])
+    # Last panel: throughput per transistor, the "performance for the hardware" of each configuration.
+    eff_ax = grid.flat[-1]
+    labels = sorted(efficiency, key=lambda l: min(c for _, c in efficiency[l].values()))
+    for i, K in enumerate(Ks):
+        xs = [j for j, l in enumerate(labels) if K in efficiency[l]]
+        eff_ax.plot(xs, [efficiency[labels[j]][K][0] for j in xs], "o-", ms=3, color=f"C{i}", label=f"K = {K}")
+    eff_ax.set_xticks(range(len(labels)))
+    eff_ax.set_xticklabels(labels, rotation=45, ha="right", fontsize=7)
+    eff_ax.set_ylabel("vertices / cycle per million transistors")
+    eff_ax.set_title("throughput per transistor", fontsize=8)
+    eff_ax.legend(fontsize=6)
+    for ax in list(grid.flat)[len(Ks):-1]:
+        ax.axis("off")
     axes[0].legend(fontsize=7, loc="lower right")
+    fig.tight_layout(rect=(0, 0, 1, 0.95))
     fig.suptitle(f"Throughput vs hardware cost ({workload(b, 'mesh', 'tess_factor', 'normals')}); "
                  "label: INT blocks N, latency Λ, contexts V, widths F/B where not default", fontsize=8)
     out.save(fig, "throughput_vs_cost")
     out.table("Pareto front: throughput vs transistors of the whole unit",
-              ["K", "configuration", "unit Mtransistors", "vertices/cycle", "one INT block Mtr.",
-               "CPG Mtr.", "logic depth", "Xilinx LUTs"], table,
-              note="A configuration is on the front when no configuration with fewer or as many transistors "
-                   "is as fast. Costs: scripts/costs.py (scripts/synth.sh, Yosys 0.23).")
+              ["K", "configuration", "unit Mtransistors", "vertices/cycle", "vertices/cycle per Mtr.",
+               "one INT block Mtr.", "CPG Mtr.", "logic depth", "Xilinx LUTs"], table,
+              note="A configuration is on the front when every configuration with fewer or as many transistors "
+                   "is at least 0.5 % slower. Costs: scripts/costs.py (scripts/synth.sh, Yosys 0.23).")
+    # Throughput per transistor at every K of the balance grid (default Λ, V and widths).
+    bal = [r for r in costed if "balance" in r["grid_set"]]
+    Ns = distinct(bal, "int_blocks")
+    rows_eff = []
+    for K in distinct(bal, "gpe_cycles"):
+        vals = {r["int_blocks"]: r["throughput"] / (r["cost_unit_transistors"] / 1e6)
+                for r in bal if r["gpe_cycles"] == K}
+        best = max(vals, key=vals.get)
+        rows_eff.append([K] + [(f"**{fmt(vals[n], 4)}**" if n == best else fmt(vals[n], 4)) if n in vals else "–"
+                               for n in Ns])
+    if rows_eff:
+        out.table("Throughput per million transistors (vertices/cycle/Mtr.; best per K in bold)",
+                  ["K"] + [f"N = {n}" for n in Ns], rows_eff,
+                  note=f"Grid `balance` ({workload(bal, 'mesh', 'tess_factor', 'int_latency', 'te_contexts', 'normals')}), "
+                       "whole-unit transistors.")
     # All costed configurations, once each.
     configs = {}
     for r in costed:

@@ -48,7 +48,7 @@ if [[ $set_name == small ]]; then
   cost_filter=(grid=balance int_blocks=1,2,3,4,6)
 else
   out="$root/docs/results/full"
-  cost_filter=(grid=balance,costs)
+  cost_filter=(grid=balance,costs int_blocks=1,2,3,4,5,6)
 fi
 work="$root/$build/results/$set_name"
 mkdir -p "$work" "$out"
