@@ -58,6 +58,16 @@ for name in "${order[@]}"; do
   esac
 done
 
+# Parameter defaults from the package. A parameter set to its default is dropped: Yosys
+# elaborates an explicitly parameterised top slightly differently (a few tenths of a percent
+# of the cells), and one configuration must give one result however it is spelt.
+pkg_default() { sed -n "s/^ *localparam int unsigned $1 *= *\([0-9]*\);.*/\1/p" "$root/rtl/tess_pkg.sv"; }
+declare -a kept=()
+for name in "${order[@]}"; do
+  if [[ ${params[$name]} == "$(pkg_default "$name")" ]]; then unset "params[$name]"; else kept+=("$name"); fi
+done
+order=("${kept[@]}")
+
 command -v yosys > /dev/null || { echo "synth.sh: yosys not found" >&2; exit 2; }
 
 # Package first, then the modules in name order.
@@ -72,8 +82,6 @@ else
   trap 'rm -rf "$work"' EXIT
 fi
 
-# Parameter defaults from the package, to derive the blocks' parameters.
-pkg_default() { sed -n "s/^ *localparam int unsigned $1 *= *\([0-9]*\);.*/\1/p" "$root/rtl/tess_pkg.sv"; }
 value() { if [[ -v "params[$1]" ]]; then echo "${params[$1]}"; else pkg_default "$1"; fi; }
 I=$(value CoordIntBits); F=$(value CoordFracBits); B=$(value BaryBits)
 N=$(value IntBlocks); LAT=$(value IntLatency); V=$(value Contexts)
