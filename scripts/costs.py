@@ -2,6 +2,7 @@
 """Hardware cost of every RTL configuration in a sweep's results, joined to its rows.
 
     costs.py RESULTS.csv [-o OUT.csv] [--where KEY=V[,V...] ...] [--cache DIR] [--no-xilinx]
+             [--dry-run | --cached-only | --require-cached]
 
 For each distinct RTL configuration among the rows (int_blocks, int_latency, te_contexts,
 coord_int_bits, coord_frac_bits, bary_bits, tri_fifo_depth, vtx_fifo_depth; the normal mode is
@@ -179,6 +180,9 @@ def main(argv):
     ap.add_argument("--dry-run", action="store_true", help="list the configurations and whether they are cached")
     ap.add_argument("--cached-only", action="store_true",
                     help="join the cached configurations only, synthesize nothing (the others get no cost columns)")
+    ap.add_argument("--require-cached", action="store_true",
+                    help="synthesize nothing; fail, naming them, if configurations are not cached (a check that the "
+                         "recorded costs belong to the current RTL)")
     args = ap.parse_args(argv)
 
     try:
@@ -230,6 +234,12 @@ def main(argv):
             print(f"  {'cached ' if c in results else 'missing'}  {describe(c)}", file=sys.stderr)
         return 0
 
+    if args.require_cached and missing:
+        for c, _ in missing:
+            print(f"costs.py: error: no recorded cost of {describe(c)} for the current RTL, synth.sh and "
+                  f"{yosys} in {cache}; run scripts/costs.py without --require-cached to synthesize it",
+                  file=sys.stderr)
+        return 1
     if args.cached_only:
         missing = []
     start = time.monotonic()

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs everything tessim needs from Debian's archive (idempotent: installs only what is
 # missing) and configures + builds the project into build/ with both cores.
+#   scripts/setup.sh          packages, then the build
+#   scripts/setup.sh --deps   packages only
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -29,6 +31,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
 fi
+
+[[ ${1:-} == --deps ]] && exit 0
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${TESSIM_CMAKE_ARGS:-}
 cmake --build build -j2
