@@ -348,6 +348,25 @@ def fig_cost(rows, out):
                   ["K"] + [f"N = {n}" for n in Ns], rows_eff,
                   note=f"Grid `balance` ({workload(bal, 'mesh', 'tess_factor', 'int_latency', 'te_contexts', 'normals')}), "
                        "whole-unit transistors.")
+    # Per time instead of per cycle: the clock period scales with the logic depth (the only fmax
+    # estimate Yosys gives without a timing library), relative to the shallowest configuration.
+    depths = {r["int_blocks"]: r.get("cost_unit_depth") for r in bal if r.get("cost_unit_depth")}
+    if depths:
+        shallow = min(depths.values())
+        rows_time = []
+        for K in distinct(bal, "gpe_cycles"):
+            vals = {r["int_blocks"]: r["throughput"] * shallow / depths[r["int_blocks"]]
+                    for r in bal if r["gpe_cycles"] == K and r["int_blocks"] in depths}
+            best = max(vals, key=vals.get)
+            rows_time.append([K] + [(f"**{fmt(vals[n], 4)}**" if n == best else fmt(vals[n], 4)) if n in vals
+                                    else "–" for n in Ns])
+        out.table("Throughput per time at the logic-depth clock estimate (vertices per shallowest-unit cycle)",
+                  ["K"] + [f"N = {n}" for n in Ns], rows_time,
+                  note="fmax taken as proportional to 1 / logic depth of the whole unit (`ltp`, generic cells): "
+                       + ", ".join(f"N = {n}: {d}" for n, d in sorted(depths.items()))
+                       + f". Entries are vertices/cycle x {shallow} / depth(N), i.e. vertices per clock cycle "
+                         "of the shallowest configuration; best per K in bold. The GPE's K is counted in cycles "
+                         "of the same clock.")
     # All costed configurations, once each.
     configs = {}
     for r in costed:
