@@ -282,8 +282,10 @@ def fig_cost(rows, out):
             if r["gpe_cycles"] != K:
                 continue
             label = f"N{r['int_blocks']}"
-            if r["int_latency"] != 1 or r["te_contexts"] != 4:
-                label += f" Λ{r['int_latency']} V{r['te_contexts']}"
+            if r["int_latency"] != 1:
+                label += f" Λ{r['int_latency']}"
+            if r["te_contexts"] != 4:
+                label += f" V{r['te_contexts']}"
             if r["coord_frac_bits"] != 20 or r["bary_bits"] != 16:
                 label += f" F{r['coord_frac_bits']} B{r['bary_bits']}"
             pts.append((r["cost_unit_transistors"] / 1e6, r["throughput"], label, r))
@@ -297,8 +299,10 @@ def fig_cost(rows, out):
         ax.plot([p[0] for p in uniq], [p[1] for p in uniq], "o", color="0.6", ms=4)
         ax.step([p[0] for p in front], [p[1] for p in front], "-", where="post", color="C3", lw=1)
         ax.plot([p[0] for p in front], [p[1] for p in front], "o", color="C3", ms=6, label="Pareto front")
-        for p in uniq:
-            ax.annotate(p[2], (p[0], p[1]), textcoords="offset points", xytext=(3, -9), fontsize=6)
+        # Labels alternate below and above their points: neighbours in cost often share a rate.
+        for i, p in enumerate(sorted(uniq, key=lambda p: p[0])):
+            ax.annotate(p[2], (p[0], p[1]), textcoords="offset points", xytext=(3, -9 if i % 2 == 0 else 5),
+                        fontsize=6)
             efficiency.setdefault(p[2], {})[K] = (p[1] / p[0], p[0])
         ax.axhline(1.0 / K, ls="--", color="0.4", lw=0.8)
         ax.set_title(f"K = {K} (dashed: GPE limit 1/K)", fontsize=8)
@@ -326,7 +330,7 @@ def fig_cost(rows, out):
     axes[0].legend(fontsize=7, loc="lower right")
     fig.tight_layout(rect=(0, 0, 1, 0.95))
     fig.suptitle(f"Throughput vs hardware cost ({workload(b, 'mesh', 'tess_factor', 'normals')}); "
-                 "label: INT blocks N, latency Λ, contexts V, widths F/B where not default", fontsize=8)
+                 "label: INT blocks N; latency Λ, contexts V, widths F/B where not 1, 4, 20/16", fontsize=8)
     out.save(fig, "throughput_vs_cost")
     out.table("Pareto front: throughput vs transistors of the whole unit",
               ["K", "configuration", "unit Mtransistors", "vertices/cycle", "vertices/cycle per Mtr.",
