@@ -83,19 +83,21 @@ inline int verilator_seed(std::uint64_t seed) {
 }  // namespace detail
 
 // The parameters a model was verilated with (the -G values of rtl/CMakeLists.txt on top of the
-// tess_pkg defaults), and how to construct it.
+// tess_pkg defaults, which are the defaults of sim::UnitConfig), and how to construct it.
 struct VariantSpec {
+  static inline const sim::UnitConfig kDefaults{};
+
   const char* name;
   int int_blocks;
   int inject_bug = 0;
   bool randomize_x = false;  // --x-initial unique build: seed the random initial values
-  int int_latency = 1;
-  int contexts = 4;
-  int tri_fifo_depth = 2;
-  int vtx_fifo_depth = 2;
-  int coord_int_bits = 3;
-  int coord_frac_bits = 20;
-  int bary_bits = 16;
+  int int_latency = kDefaults.int_latency;
+  int contexts = kDefaults.te_contexts;
+  int tri_fifo_depth = kDefaults.tri_fifo_depth;
+  int vtx_fifo_depth = kDefaults.vtx_fifo_depth;
+  int coord_int_bits = kDefaults.format.coord_int_bits;
+  int coord_frac_bits = kDefaults.format.coord_frac_bits;
+  int bary_bits = kDefaults.format.bary_bits;
 
   sim::UnitConfig config() const {
     sim::UnitConfig cfg;
