@@ -1,4 +1,5 @@
-// Errors reported to the user (SPEC §12): every message names the file, the element and the reason.
+// Errors reported to the user (docs/architecture.md, Bad input): every message names the file,
+// the element and the reason.
 #pragma once
 
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// The four normal fields of SPEC §2.
+// The four normal fields of docs/mathematics.md §4.
 #pragma once
 
 #include <optional>

@@ -1,5 +1,6 @@
 // All-or-nothing output files: data goes to a temporary file beside the target and is renamed
-// into place only when complete, so a failed run never leaves a half-written result (SPEC §12).
+// into place only when complete, so a failed run never leaves a half-written result
+// (docs/architecture.md, Bad input).
 #pragma once
 
 #include <filesystem>

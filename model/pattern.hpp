@@ -1,4 +1,4 @@
-// The uniform tessellation pattern (SPEC §1): L segments per edge, domain points
+// The uniform tessellation pattern (docs/mathematics.md §7): L segments per edge, domain points
 // (u, v) = (j/L, k/L), j, k >= 0, j + k <= L. One order is used everywhere (reference, cycle
 // model, RTL, output files): rows of increasing k, and within a row increasing j.
 #pragma once

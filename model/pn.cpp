@@ -17,7 +17,7 @@ struct EdgeNormalResult {
   bool degenerate;  // zero-length edge: took the (Ni + Nj) fallback
 };
 
-// Mid-edge normal of edge (Pi -> Pj) for the quadratic and reflect modes (SPEC §2).
+// Mid-edge normal of edge (Pi -> Pj), quadratic and reflect modes (docs/mathematics.md §4-§5).
 // Both formulas reflect s = Ni + Nj across the plane orthogonal to the edge (quadratic with
 // factor 2, reflect with factor 4, see docs/reference-model.md); the computation is symmetric
 // in the two ends, so both patches of a shared edge get the same value.
@@ -133,7 +133,8 @@ PnPatch make_patch(const PnInput& in, NormalMode mode) {
   const auto& P = in.p;
   const auto& N = in.n;
 
-  // Geometry (SPEC §2). Tangent point nearest Pi on edge i -> j: (2Pi + Pj - w_ij Ni) / 3.
+  // Geometry (docs/mathematics.md §2). Tangent point nearest Pi on edge i -> j:
+  // (2Pi + Pj - w_ij Ni) / 3.
   auto tangent = [&](int i, int j) {
     const double wij = glm::dot(P[j] - P[i], N[i]);
     return (2.0 * P[i] + P[j] - wij * N[i]) / 3.0;

@@ -1,4 +1,4 @@
-// Float64 reference of PN triangles (SPEC §2, §3): control points, the four normal fields,
+// Float64 reference of PN triangles (docs/mathematics.md): control points, the four normal fields,
 // evaluation by Bernstein sums and by de Casteljau (counting INT operations).
 #pragma once
 
@@ -35,7 +35,7 @@ struct PnVertex {
   glm::dvec3 normal;  // unit length (normalized field value)
 };
 
-// Builds the control nets of SPEC §2 for the chosen normal mode.
+// Builds the control nets of docs/mathematics.md §2-§4 for the chosen normal mode.
 PnPatch make_patch(const PnInput& in, NormalMode mode);
 
 // Direct evaluation by Bernstein sums at barycentric (w, u, v) = (1-u-v, u, v).

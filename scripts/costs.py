@@ -7,9 +7,9 @@
 For each distinct RTL configuration among the rows (int_blocks, int_latency, te_contexts,
 coord_int_bits, coord_frac_bits, bary_bits, tri_fifo_depth, vtx_fifo_depth; the normal mode is
 an input of the RTL and the GPE is not part of it) runs scripts/synth.sh, which synthesizes the
-whole unit, the CPG and one INT block with Yosys 0.23 (SPEC §10: generic `synth` cells and
-flip-flops, `stat -tech cmos` transistors after flip-flop legalisation, `synth_xilinx` LUT/FF/DSP,
-`ltp` logic depth after flatten). Adds to every row of a costed configuration:
+whole unit, the CPG and one INT block with Yosys 0.23 (docs/rtl.md, Synthesis: generic `synth`
+cells and flip-flops, `stat -tech cmos` transistors after flip-flop legalisation, `synth_xilinx`
+LUT/FF/DSP, `ltp` logic depth after flatten). Adds to every row of a costed configuration:
 
     cost_unit_*   whole unit (transistors, cells, flops, depth, xilinx_lut, xilinx_ff, xilinx_dsp, ...)
     cost_cpg_*    the CPG alone

@@ -680,8 +680,8 @@ def fig_errors(rows, out, mesh_info):
                    for r in sorted(wn, key=lambda r: (mesh_name(r["mesh"]), r["normals"], r["coord_frac_bits"]))])
 
 
-# Bus formats of SPEC §6 (seed 000 §5): the host sends float32 positions and normals and 32-bit
-# indices.
+# Bus formats of docs/results/load-balancing.md §9 (after Boubekeur & Schlick 2005, §5): the host
+# sends float32 positions and normals and 32-bit indices.
 FLOAT_VERTEX_BYTES = 24  # position + normal, 6 x float32
 INDEX_BYTES = 4
 

@@ -99,9 +99,9 @@ inline std::int64_t mul_const(i128 x, int frac, std::int64_t c, const NumberForm
   return saturate(round_shift(x * c, frac - f.coord_frac_bits + const_frac_bits(f)), f, flags);
 }
 
-// One INT operation (SPEC §3), per component: r = round((w A + u B + v C) / 2^B) with
-// w + u + v = 2^B. The sum is exact and rounded once, so it is symmetric in the operands and
-// never overflows (the result is a convex combination of A, B, C).
+// One INT operation (docs/mathematics.md §6), per component: r = round((w A + u B + v C) / 2^B)
+// with w + u + v = 2^B. The sum is exact and rounded once, so it is symmetric in the operands
+// and never overflows (the result is a convex combination of A, B, C).
 inline FxVec int_op(std::int64_t w, std::int64_t u, std::int64_t v, const FxVec& a, const FxVec& b,
                     const FxVec& c, int bary_bits) {
   FxVec r{};

@@ -1,4 +1,5 @@
-// The tessim binary as a user runs it: `tessim info` and `tessim tessellate` (SPEC §11, §12).
+// The tessim binary as a user runs it: `tessim info` and `tessim tessellate` (real meshes:
+// docs/verification.md; bad input: docs/architecture.md, Bad input).
 #include <sys/wait.h>
 #include <unistd.h>
 

@@ -1,4 +1,5 @@
-// Mesh import and export (model/mesh_io.hpp): SPEC §11 real data, §12 bad input.
+// Mesh import and export (model/mesh_io.hpp): real meshes (docs/verification.md) and bad input
+// (docs/architecture.md, Bad input).
 #include <cmath>
 #include <cstdint>
 #include <filesystem>

@@ -1,4 +1,4 @@
-// The uniform tessellation pattern (model/pattern.hpp, SPEC §1): counts, order, topology.
+// The uniform pattern (model/pattern.hpp, docs/mathematics.md §7): counts, order, topology.
 #include <algorithm>
 #include <map>
 #include <set>

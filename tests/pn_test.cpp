@@ -1,4 +1,4 @@
-// Float64 reference of PN triangles (model/pn.hpp, model/tessellate.hpp): SPEC §1–§3.
+// Float64 reference of PN triangles (model/pn.hpp, model/tessellate.hpp): docs/mathematics.md.
 #include <cmath>
 #include <cstdint>
 #include <filesystem>

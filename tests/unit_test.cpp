@@ -113,8 +113,8 @@ std::array<FxVec, D*(D + 1) / 2> casteljau_level(const std::array<FxVec, (D + 1)
 }
 
 // The datapath written out directly: control points, then de Casteljau with the unit's INT
-// operation, in the level order of SPEC §3. The cycle model must produce exactly these values
-// whatever its schedule.
+// operation, in the level order of docs/mathematics.md §6. The cycle model must produce exactly
+// these values whatever its schedule.
 VertexFx direct_vertex(const TriangleFx& tri, int j, int k, const UnitConfig& cfg) {
   const ControlPointsFx cp = compute_control_points(tri, cfg.normals, cfg.format);
   const int B = cfg.format.bary_bits;
