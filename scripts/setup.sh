@@ -19,6 +19,8 @@ PACKAGES=(
   yosys                         # synthesis for hardware cost
   python3-matplotlib python3-numpy  # plots (run with /usr/bin/python3)
   zlib1g-dev                    # FST waveforms
+  git                           # scripts/costs.py records the commit its RTL was taken from
+  strace                        # scripts/check_packages.py: files the build and tests touch
 )
 
 missing=()

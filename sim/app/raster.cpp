@@ -7,10 +7,9 @@
 #include <stdexcept>
 #include <string>
 
-#include <OpenImageIO/imageio.h>
-
 #include "model/error.hpp"
 #include "model/output_file.hpp"
+#include "sim/app/imageio/imageio_loader.hpp"
 
 namespace tessim::app {
 
@@ -391,10 +390,16 @@ struct ImageFileWriter::Impl {
   int width = 0;
   int height = 0;
   int next_row = 0;
+  const ImageIoPlugin* plugin = nullptr;
   // Declared before `out` so that the image file is closed before the temporary is removed.
   std::unique_ptr<AtomicOutput> atomic;
-  std::unique_ptr<OIIO::ImageOutput> out;
+  struct OutDeleter {
+    const ImageIoPlugin* plugin;
+    void operator()(tessim_image_out* out) const { plugin->free(out); }
+  };
+  std::unique_ptr<tessim_image_out, OutDeleter> out{nullptr, OutDeleter{nullptr}};
   std::vector<float> scratch;
+  char error[512] = {};
 
   [[noreturn]] void fail(const std::string& reason) const { throw InputError(path.string(), "image", reason); }
 };
@@ -409,13 +414,12 @@ ImageFileWriter::ImageFileWriter(const std::filesystem::path& path, int width, i
   d.png = lower_extension(path) == ".png";
   d.width = width;
   d.height = height;
+  d.plugin = &image_io_plugin(path);  // loads OpenImageIO only now that an image is written
   d.atomic = std::make_unique<AtomicOutput>(path, true);
-  // The temporary's name does not end in .png/.exr, so name the format explicitly.
-  d.out = OIIO::ImageOutput::create(d.png ? "png" : "openexr");
-  if (!d.out) d.fail("OpenImageIO has no writer for this format: " + OIIO::geterror());
-  OIIO::ImageSpec spec(width, height, 3, d.png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::HALF);
-  spec.attribute("oiio:ColorSpace", d.png ? "sRGB" : "Linear");
-  if (!d.out->open(d.atomic->temp_path().string(), spec)) d.fail(d.out->geterror());
+  tessim_image_out* out = nullptr;
+  if (d.plugin->open(d.atomic->temp_path().c_str(), d.png ? 1 : 0, width, height, &out, d.error, sizeof d.error))
+    d.fail(d.error);
+  d.out = {out, Impl::OutDeleter{d.plugin}};
 }
 
 ImageFileWriter::~ImageFileWriter() = default;
@@ -426,13 +430,12 @@ void ImageFileWriter::write_rows(const Image& band) {
   if (band.width != d.width || d.next_row + band.height > d.height)
     throw std::invalid_argument("ImageFileWriter::write_rows: band does not fit the image");
   const float* data = band.rgb.data();
-  if (d.png) {  // PNG holds sRGB-encoded values; OpenImageIO quantizes the floats to 8 bits
+  if (d.png) {  // PNG holds sRGB-encoded values; the writer quantizes the floats to 8 bits
     d.scratch.resize(band.rgb.size());
     for (std::size_t i = 0; i < band.rgb.size(); ++i) d.scratch[i] = srgb_encode(band.rgb[i]);
     data = d.scratch.data();
   }
-  if (!d.out->write_scanlines(d.next_row, d.next_row + band.height, 0, OIIO::TypeDesc::FLOAT, data))
-    d.fail(d.out->geterror());
+  if (d.plugin->write_rows(d.out.get(), d.next_row, band.height, data, d.error, sizeof d.error)) d.fail(d.error);
   d.next_row += band.height;
 }
 
@@ -440,7 +443,7 @@ void ImageFileWriter::finish() {
   Impl& d = *impl_;
   if (!d.out) throw std::logic_error("ImageFileWriter: already finished");
   if (d.next_row != d.height) throw std::logic_error("ImageFileWriter::finish: rows missing");
-  if (!d.out->close()) d.fail(d.out->geterror());
+  if (d.plugin->close(d.out.get(), d.error, sizeof d.error)) d.fail(d.error);
   d.out.reset();
   d.atomic->commit_external();
 }
