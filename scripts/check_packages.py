@@ -43,10 +43,17 @@ CALL = re.compile(r'^(?:\d+\s+)?(?P<call>\w+)\((?:AT_FDCWD, |-?\d+, )?"(?P<path>
 RESUMED = re.compile(r'^(?:\d+\s+)?<\.\.\. (?P<call>\w+) resumed>')
 RESULT = re.compile(r'\)\s+=\s+(?P<ret>-?\d+)(?:\s+(?P<errno>E[A-Z0-9]+))?')
 UNFINISHED = "<unfinished ...>"
-# Files that programs read only if present and work the same without: not a dependency.
-OPTIONAL_FILES = {
-    "/usr/share/locale/locale.alias": "glibc reads it when the locales package is installed",
-}
+# Files that programs read only if present and work the same without: not a dependency. Each
+# is a directory or file that a program scans whatever packages put there.
+OPTIONAL_FILES = [
+    (r"^/usr/share/locale/locale\.alias$", "glibc reads it when the locales package is installed"),
+    (r"^/etc/ld\.so\.conf\.d/", "ldconfig reads every file other packages put there"),
+    (r"/bfd-plugins/", "binutils (ar, nm, ld) loads every linker plugin installed there"),
+    (r"^/usr/lib/ssl/openssl\.cnf$", "OpenSSL reads its configuration file when openssl is installed"),
+    (r"^/usr/lib/python3/dist-packages/[^/]+\.pth$", "Python's site module runs every .pth file installed"),
+    (r"^/usr/lib/python3/dist-packages/_distutils_hack/", "imported by setuptools' .pth file, when installed"),
+]
+OPTIONAL = re.compile("|".join(f"(?:{p})" for p, _ in OPTIONAL_FILES))
 
 
 def setup_packages():
@@ -93,13 +100,14 @@ def allowed_packages(roots, pkgs):
     for name, f in pkgs.items():
         for group in dep_groups(f.get("Provides", "")):
             providers.setdefault(group[0], []).append(name)
-    allowed = {n for n, f in pkgs.items()
-               if f.get("Essential") == "yes" or f.get("Priority") in ("required", "important")}
+    base = [n for n, f in pkgs.items()
+            if f.get("Essential") == "yes" or f.get("Priority") in ("required", "important")]
     missing = [r for r in roots if r not in pkgs]
-    todo = [r for r in roots if r in pkgs]
+    allowed = set()
+    todo = [r for r in roots if r in pkgs] + base
     while todo:
         name = todo.pop()
-        if name in allowed and name not in roots:
+        if name in allowed:
             continue
         allowed.add(name)
         f = pkgs[name]
@@ -138,8 +146,9 @@ def owner_of(path, owners):
 
 
 def parse_trace(trace):
-    """(touched, executed): absolute paths of files the traced processes used successfully."""
-    touched, executed = set(), set()
+    """(touched, executed, optional): absolute paths of files the traced processes used
+    successfully; `optional` holds those matching OPTIONAL_FILES (kept out of `touched`)."""
+    touched, executed, optional = set(), set(), set()
     pending = {}  # pid -> (call, path) of an unfinished call
     with open(trace, errors="replace") as f:
         for line in f:
@@ -158,23 +167,30 @@ def parse_trace(trace):
             res = RESULT.search(line)
             if not res or int(res.group("ret")) < 0:
                 continue  # failed look-ups (ENOENT and the like) touch nothing
-            if os.path.isdir(path) or not os.path.lexists(path) or path in OPTIONAL_FILES:
+            if os.path.isdir(path) or not os.path.lexists(path):
+                continue
+            if OPTIONAL.search(os.path.normpath(path)):
+                optional.add(path)
                 continue
             touched.add(path)
             if call == "execve":
                 executed.add(path)
-    return touched, executed
+    return touched, executed, optional
 
 
-def report(touched, executed, package_list):
+def report(touched, executed, package_list, optional=()):
     pkgs = installed_packages()
     roots = package_list if package_list is not None else setup_packages()
     allowed, missing = allowed_packages(roots, pkgs)
     owners = file_owners()
+    # An optional file that is a plugin loads its own dependencies (binutils' LLVM plugin loads
+    # libLLVM): the packages of optional files and their dependencies are exempt too.
+    optional_owners = sorted({o for p in optional for o in owner_of(p, owners)})
+    exempt, _ = allowed_packages(optional_owners, pkgs) if optional_owners else (set(), [])
     outside = {}
     for path in sorted(touched):
         for pkg in owner_of(path, owners):
-            if pkg not in allowed:
+            if pkg not in allowed and pkg not in exempt:
                 outside.setdefault(pkg, []).append(path)
     scratch = [str(REPO), tempfile.gettempdir(), "/tmp", "/proc", "/dev"]
     foreign = sorted(p for p in executed
@@ -219,10 +235,10 @@ def run(args):
     # run at nearly full speed.
     status = subprocess.run([strace, "-f", "--seccomp-bpf", "-qq", "-s", "4096", "-e", f"trace={TRACED_SYSCALLS}",
                              "-e", "signal=none", "-o", str(trace), "--", *cmd]).returncode
-    touched, executed = parse_trace(trace)
+    touched, executed, optional = parse_trace(trace)
     if not args.trace:
         trace.unlink()
-    ok = report(touched, executed, None)
+    ok = report(touched, executed, None, optional)
     if status != 0:
         print(f"check_packages: the command failed with exit status {status}", file=sys.stderr)
         return status
@@ -251,10 +267,10 @@ def main():
         package_list = [w for line in Path(args.packages).read_text().splitlines()
                         for w in line.split("#", 1)[0].split()]
     if args.mode == "report":
-        touched, executed = parse_trace(args.trace)
+        touched, executed, optional = parse_trace(args.trace)
     else:
-        touched, executed = set(args.paths) | set(args.executed), set(args.executed)
-    return 0 if report(touched, executed, package_list) else 1
+        touched, executed, optional = set(args.paths) | set(args.executed), set(args.executed), set()
+    return 0 if report(touched, executed, package_list, optional) else 1
 
 
 if __name__ == "__main__":
