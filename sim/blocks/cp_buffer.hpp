@@ -1,0 +1,55 @@
+// Control-point buffers of rtl/tess_cpbuf.sv (docs/microarchitecture.md §6): two entries, so
+// that the CPG fills one while the TE reads the other. The CPG writes at wr_ptr, the DPG hands
+// out the points of the patch at rd_ptr; an entry is EMPTY -> FULL (CPG write) -> DRAINING (last
+// domain point handed out) -> EMPTY (last vertex of the patch retired).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "sim/cpg.hpp"
+
+namespace tessim::sim {
+
+class ControlPointBuffer {
+ public:
+  enum class State : std::uint8_t { Empty, Full, Draining };
+  struct Entry {
+    ControlPointsFx cp;
+    State state = State::Empty;
+    int L = 1;
+    std::uint32_t id = 0;
+  };
+
+  void reset() {
+    for (Entry& e : entries_) e.state = State::Empty;
+    wr_ptr_ = rd_ptr_ = 0;
+  }
+
+  bool wr_empty() const { return entries_[static_cast<std::size_t>(wr_ptr_)].state == State::Empty; }
+  bool rd_full() const { return entries_[static_cast<std::size_t>(rd_ptr_)].state == State::Full; }
+  int rd_ptr() const { return rd_ptr_; }
+  const Entry& rd() const { return entries_[static_cast<std::size_t>(rd_ptr_)]; }
+  const Entry& entry(int index) const { return entries_[static_cast<std::size_t>(index)]; }
+  bool empty() const { return entries_[0].state == State::Empty && entries_[1].state == State::Empty; }
+
+  // CPG write (while wr_empty()): fill the entry, then it is FULL and wr_ptr moves on.
+  Entry& write_slot() { return entries_[static_cast<std::size_t>(wr_ptr_)]; }
+  void commit_write() {
+    entries_[static_cast<std::size_t>(wr_ptr_)].state = State::Full;
+    wr_ptr_ ^= 1;
+  }
+  // DPG handed out the patch's last point: DRAINING, rd_ptr moves on.
+  void drain() {
+    entries_[static_cast<std::size_t>(rd_ptr_)].state = State::Draining;
+    rd_ptr_ ^= 1;
+  }
+  // The patch's last vertex retired.
+  void release(int index) { entries_[static_cast<std::size_t>(index)].state = State::Empty; }
+
+ private:
+  std::array<Entry, 2> entries_;
+  int wr_ptr_ = 0, rd_ptr_ = 0;
+};
+
+}  // namespace tessim::sim

@@ -1,0 +1,92 @@
+// Control-point generation as a timed block, rtl/tess_cpg.sv (docs/microarchitecture.md §5):
+// accepts a triangle from the TRI FIFO, computes for C cycles, writes the control points into
+// the buffer at wr_ptr when that one is EMPTY. The values come from the untimed fixed-point
+// CPG (sim/cpg.hpp, compute_control_points); this block only decides when.
+//
+// Mappings: dedicated (own datapath: accept, C - 1 compute cycles, write) or on the geometry
+// engine (the counter is loaded with C and counts only cycles the GPE grants, cpg_step).
+#pragma once
+
+#include <cstdint>
+
+#include "sim/blocks/cp_buffer.hpp"
+#include "sim/cpg.hpp"
+
+namespace tessim::sim {
+
+// What the CPG does in a cycle (finer than its statistics class, for traces).
+enum class CpgAction : std::uint8_t { Idle, Accept, Compute, WaitGpe, Write, Blocked };
+// Its statistics class (docs/microarchitecture.md §10).
+enum class CpgClass : std::uint8_t { Busy, Blocked, WaitGpe, Idle };
+
+const char* to_string(CpgAction a);
+const char* to_string(CpgClass c);
+
+class CpgBlock {
+ public:
+  // cycles: C, the counter load value at accept (sim::cpg_cycles or the GPE-mapped C).
+  CpgBlock(NormalMode normals, const NumberFormat& format, int cycles, bool gpe_mapping)
+      : normals_(normals), format_(format), cycles_(cycles), gpe_mapping_(gpe_mapping) {}
+
+  void reset() {
+    busy_ = false;
+    counter_ = 0;
+  }
+
+  bool busy() const { return busy_; }
+  int cycles() const { return cycles_; }
+  // GPE mapping only: computing and asking for a spare GPE cycle (always false when dedicated).
+  bool computing() const { return gpe_mapping_ && busy_ && counter_ > 0; }
+
+  // The cycle's action from the registered state: a triangle waiting in the TRI FIFO, the
+  // buffer at wr_ptr EMPTY, the GPE granting a spare cycle.
+  CpgAction decide(bool tri_available, bool wr_empty, bool cpg_step) const {
+    if (!busy_) return tri_available ? CpgAction::Accept : CpgAction::Idle;
+    if (counter_ > 0) return (!gpe_mapping_ || cpg_step) ? CpgAction::Compute : CpgAction::WaitGpe;
+    return wr_empty ? CpgAction::Write : CpgAction::Blocked;
+  }
+
+  static CpgClass classify(CpgAction a) {
+    switch (a) {
+      case CpgAction::Accept:
+      case CpgAction::Compute:
+      case CpgAction::Write: return CpgClass::Busy;
+      case CpgAction::Blocked: return CpgClass::Blocked;
+      case CpgAction::WaitGpe: return CpgClass::WaitGpe;
+      default: return CpgClass::Idle;
+    }
+  }
+
+  // The clock edge. Accept latches `tri_front`; Write fills the buffer at wr_ptr.
+  void commit(CpgAction a, const TriangleFx& tri_front, ControlPointBuffer& buffers) {
+    switch (a) {
+      case CpgAction::Accept:
+        latch_ = tri_front;
+        busy_ = true;
+        counter_ = gpe_mapping_ ? cycles_ : cycles_ - 1;
+        break;
+      case CpgAction::Compute: --counter_; break;
+      case CpgAction::Write: {
+        ControlPointBuffer::Entry& e = buffers.write_slot();
+        e.cp = compute_control_points(latch_, normals_, format_);
+        e.L = latch_.L;
+        e.id = latch_.id;
+        buffers.commit_write();
+        busy_ = false;
+        break;
+      }
+      default: break;
+    }
+  }
+
+ private:
+  NormalMode normals_;
+  NumberFormat format_;
+  int cycles_;
+  bool gpe_mapping_;
+  bool busy_ = false;
+  int counter_ = 0;
+  TriangleFx latch_;
+};
+
+}  // namespace tessim::sim

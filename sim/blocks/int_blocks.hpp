@@ -1,0 +1,59 @@
+// The N INT blocks of rtl/tess_int.sv (docs/microarchitecture.md §8): each takes one operation
+// per cycle and delivers it Λ cycles later. The cycle model computes the result at issue
+// (nothing can read it before its done bit is set, so the early write is invisible) and keeps
+// only the done bits in flight: completions due at the end of cycle c wait in slot c mod Λ.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace tessim::sim {
+
+class IntBlocks {
+ public:
+  struct Completion {
+    std::uint8_t context;
+    std::uint32_t bit;  // done bit of the op
+  };
+
+  IntBlocks(int blocks, int latency)
+      : blocks_(blocks), latency_(latency),
+        pending_(static_cast<std::size_t>(blocks) * static_cast<std::size_t>(latency)),
+        pending_count_(static_cast<std::size_t>(latency), 0) {}
+
+  void reset() {
+    for (int& c : pending_count_) c = 0;
+    due_slot_ = 0;
+  }
+
+  int blocks() const { return blocks_; }
+  int latency() const { return latency_; }
+
+  // An op issued in this cycle: its done bit is due at the end of cycle t + Λ - 1, whose slot
+  // is (t + Λ - 1) mod Λ = (t - 1) mod Λ.
+  void issue(int context, std::uint32_t done_bit) {
+    const int slot = due_slot_ == 0 ? latency_ - 1 : due_slot_ - 1;
+    int& count = pending_count_[static_cast<std::size_t>(slot)];
+    pending_[static_cast<std::size_t>(slot * blocks_ + count++)] =
+        Completion{static_cast<std::uint8_t>(context), done_bit};
+  }
+
+  // The clock edge: hands the completions due in this cycle to `apply(context, bit)`.
+  template <class Apply>
+  void complete_due(Apply&& apply) {
+    const std::size_t slot = static_cast<std::size_t>(due_slot_);
+    const Completion* due = &pending_[slot * static_cast<std::size_t>(blocks_)];
+    for (int i = 0; i < pending_count_[slot]; ++i) apply(due[i].context, due[i].bit);
+    pending_count_[slot] = 0;
+    due_slot_ = due_slot_ + 1 == latency_ ? 0 : due_slot_ + 1;
+  }
+
+ private:
+  int blocks_;
+  int latency_;
+  std::vector<Completion> pending_;  // latency x blocks
+  std::vector<int> pending_count_;
+  int due_slot_ = 0;  // slot of the current cycle: cycle mod latency
+};
+
+}  // namespace tessim::sim

@@ -1,0 +1,36 @@
+#include "sim/blocks/te.hpp"
+
+namespace tessim::sim {
+
+const char* to_string(TeClass c) {
+  switch (c) {
+    case TeClass::Busy: return "busy";
+    case TeClass::BlockedByGpe: return "blocked_by_gpe";
+    case TeClass::StarvedByCpg: return "starved_by_cpg";
+    case TeClass::Idle: return "idle";
+    case TeClass::Pipeline: return "pipeline";
+  }
+  return "?";
+}
+
+Te::Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const NumberFormat& format)
+    : n_contexts_(contexts),
+      bary_bits_(format.bary_bits),
+      ops_(int_ops_for(normals)),
+      all_ops_((std::uint32_t{1} << kIntOpsPerVertex) - 1),
+      absent_ops_(absent_ops(normals)),
+      normal_op_(normal_op(normals)),
+      contexts_(static_cast<std::size_t>(contexts)),
+      dpg_(format),
+      ints_(int_blocks, int_latency),
+      issued_(static_cast<std::size_t>(int_blocks)) {}
+
+void Te::reset() {
+  for (Context& c : contexts_) c.issued = c.done = c.ready = 0;
+  head_ = count_ = 0;
+  next_seq_ = 0;
+  dpg_.reset();
+  ints_.reset();
+}
+
+}  // namespace tessim::sim

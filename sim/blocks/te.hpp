@@ -1,0 +1,198 @@
+// Tessellation engine of rtl/tess_te.sv (docs/microarchitecture.md §8): V vertex contexts in a
+// circular queue, the scheduler that issues the first N ready operations (oldest context first,
+// lowest op first) onto the N INT blocks, the DPG that supplies domain points, and in-order
+// retirement of the head context into the VTX FIFO.
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "sim/blocks/cp_buffer.hpp"
+#include "sim/blocks/dpg.hpp"
+#include "sim/blocks/int_blocks.hpp"
+#include "sim/fixed.hpp"
+#include "sim/int_ops.hpp"
+#include "sim/unit_io.hpp"
+
+namespace tessim::sim {
+
+// The TE's statistics class of a cycle (docs/microarchitecture.md §10).
+enum class TeClass : std::uint8_t { Busy, BlockedByGpe, StarvedByCpg, Idle, Pipeline };
+const char* to_string(TeClass c);
+
+// One operation issued to an INT block.
+struct IssuedOp {
+  int block = 0;            // INT block (the i-th issued op of a cycle goes to block i)
+  int context = 0;          // context slot 0..V-1
+  int op = 0;               // 0..13, sim/int_ops.hpp
+  std::uint64_t vertex = 0; // sequence number of the vertex (allocation order since reset)
+};
+
+class Te {
+ public:
+  Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const NumberFormat& format);
+
+  void reset();
+
+  int contexts_in_use() const { return count_; }
+  int int_blocks() const { return ints_.blocks(); }
+  // The head context has every result: it retires unless the VTX FIFO is full.
+  bool head_done() const { return count_ > 0 && contexts_[static_cast<std::size_t>(head_)].done == all_ops_; }
+  bool can_allocate(bool point_available) const { return count_ < n_contexts_ && point_available; }
+
+  // Scheduler of the cycle: issues up to N ready ops reading the control points in `buffers`;
+  // returns how many (the i-th went to INT block i, described by issued_ops()[i]).
+  int schedule(const ControlPointBuffer& buffers) {
+    int issued = 0;
+    const int n_blocks = ints_.blocks();
+    for (int age = 0; age < count_ && issued < n_blocks; ++age) {
+      int slot = head_ + age;
+      if (slot >= n_contexts_) slot -= n_contexts_;
+      Context& ctx = contexts_[static_cast<std::size_t>(slot)];
+      while (ctx.ready != 0 && issued < n_blocks) {
+        const int op = std::countr_zero(ctx.ready);
+        ctx.ready &= ctx.ready - 1;
+        issue(buffers, ctx, slot, op, issued);
+        ++issued;
+      }
+    }
+    return issued;
+  }
+  const IssuedOp* issued_ops() const { return issued_.data(); }
+
+  TeClass classify(int issued, bool head_done, bool vtx_full, bool point_available, bool upstream_busy) const {
+    if (issued > 0) return TeClass::Busy;
+    if (head_done && vtx_full) return TeClass::BlockedByGpe;
+    if (count_ == 0 && !point_available) return upstream_busy ? TeClass::StarvedByCpg : TeClass::Idle;
+    return TeClass::Pipeline;
+  }
+
+  // The clock edge. `retire_into`: the VTX FIFO slot the head vertex retires into (null: no
+  // retirement); `allocate`: the DPG's current point goes into the tail context. Returns the
+  // sequence numbers of the retired and allocated vertices through the pointers when non-null.
+  void commit(VertexFx* retire_into, bool allocate, ControlPointBuffer& buffers, std::uint64_t* retired_seq,
+              std::uint64_t* allocated_seq);
+
+ private:
+  struct Context {
+    std::array<FxVec, kIntOpsPerVertex> t{};  // temporaries T0..T13
+    std::int64_t w = 0, u = 0, v = 0;
+    std::uint32_t issued = 0, done = 0;  // bit o: op o issued / result written
+    // Ops not issued whose dependences are all done: dependences_met(done) & ~issued, kept up to
+    // date when done or issued change instead of being derived every cycle.
+    std::uint32_t ready = 0;
+    int j = 0, k = 0, L = 1;
+    std::uint32_t id = 0;
+    bool last = false;
+    std::uint8_t flags = 0;
+    std::uint8_t buffer = 0;
+    std::uint64_t seq = 0;
+  };
+
+  // Ops whose dependences are all done (issued or not): the table's masks, expanded at compile
+  // time into one test per dependent op (this runs for every context every cycle).
+  static std::uint32_t dependences_met(std::uint32_t done) {
+    return dependences_met(done, std::make_index_sequence<kIntOpsPerVertex>{});
+  }
+  template <std::size_t... Op>
+  static std::uint32_t dependences_met(std::uint32_t done, std::index_sequence<Op...>) {
+    return (op_ready<Op>(done) | ...);
+  }
+  template <std::size_t Op>
+  static std::uint32_t op_ready(std::uint32_t done) {
+    constexpr std::uint32_t deps = kIntOps[Op].depends_on;
+    if constexpr (deps == 0) return std::uint32_t{1} << Op;
+    else return std::uint32_t{(done & deps) == deps} << Op;
+  }
+
+  void issue(const ControlPointBuffer& buffers, Context& ctx, int context_slot, int op, int block) {
+    const ControlPointBuffer::Entry& buf = buffers.entry(ctx.buffer);
+    const FxVec* base[3] = {buf.cp.b.data(), buf.cp.n.data(), ctx.t.data()};
+    const auto& src = ops_[static_cast<std::size_t>(op)].operands;
+    auto operand = [&](int i) -> const FxVec& {
+      const IntOperand& o = src[static_cast<std::size_t>(i)];
+      return base[static_cast<int>(o.space)][o.index];
+    };
+    ctx.t[static_cast<std::size_t>(op)] = int_op(ctx.w, ctx.u, ctx.v, operand(0), operand(1), operand(2), bary_bits_);
+    ctx.issued |= std::uint32_t{1} << op;
+    ints_.issue(context_slot, std::uint32_t{1} << op);
+    issued_[static_cast<std::size_t>(block)] = IssuedOp{block, context_slot, op, ctx.seq};
+  }
+
+  int n_contexts_;
+  int bary_bits_;
+  std::array<IntOpInfo, kIntOpsPerVertex> ops_;
+  std::uint32_t all_ops_;     // done mask of a finished vertex
+  std::uint32_t absent_ops_;  // ops that do not exist in this mode (linear: 7, 8, 12)
+  int normal_op_;             // temporary holding the output normal
+  std::vector<Context> contexts_;
+  int head_ = 0, count_ = 0;
+  std::uint64_t next_seq_ = 0;
+  Dpg dpg_;
+  IntBlocks ints_;
+  std::vector<IssuedOp> issued_;
+};
+
+// Inline: called every cycle from Unit::tick.
+inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer& buffers, std::uint64_t* retired_seq,
+                std::uint64_t* allocated_seq) {
+  // Allocation goes to the tail as registered at the start of the cycle.
+  const int head_start = head_;
+  const int count_start = count_;
+
+  if (retire_into) {
+    const Context& h = contexts_[static_cast<std::size_t>(head_)];
+    VertexFx& out = *retire_into;
+    out.pos = h.t[kPositionOp];
+    out.nrm = h.t[static_cast<std::size_t>(normal_op_)];
+    out.u = h.u;
+    out.v = h.v;
+    out.j = h.j;
+    out.k = h.k;
+    out.L = h.L;
+    out.id = h.id;
+    out.last = h.last;
+    out.flags = h.flags;
+    if (h.last) buffers.release(h.buffer);
+    if (retired_seq) *retired_seq = h.seq;
+    head_ = head_ + 1 == n_contexts_ ? 0 : head_ + 1;
+  }
+
+  // INT results due at the end of this cycle (issued Λ - 1 cycles ago, or just now for Λ = 1).
+  ints_.complete_due([this](int context, std::uint32_t bit) {
+    Context& c = contexts_[static_cast<std::size_t>(context)];
+    c.done |= bit;
+    c.ready = dependences_met(c.done) & ~c.issued;
+  });
+
+  if (allocate) {
+    const ControlPointBuffer::Entry& buf = buffers.rd();
+    int tail = head_start + count_start;
+    if (tail >= n_contexts_) tail -= n_contexts_;
+    Context& ctx = contexts_[static_cast<std::size_t>(tail)];
+    const DpgPoint p = dpg_.point(buf.L);
+    ctx.j = p.j;
+    ctx.k = p.k;
+    ctx.L = buf.L;
+    ctx.u = p.u;
+    ctx.v = p.v;
+    ctx.w = p.w;
+    ctx.id = buf.id;
+    ctx.flags = buf.cp.flags;
+    ctx.buffer = static_cast<std::uint8_t>(buffers.rd_ptr());
+    ctx.last = p.last;
+    ctx.issued = absent_ops_;
+    ctx.done = absent_ops_;
+    ctx.ready = dependences_met(ctx.done) & ~ctx.issued;
+    ctx.seq = next_seq_++;
+    if (allocated_seq) *allocated_seq = ctx.seq;
+    dpg_.consume(buf.L);
+    if (p.last) buffers.drain();
+  }
+  count_ = count_start + (allocate ? 1 : 0) - (retire_into ? 1 : 0);
+}
+
+}  // namespace tessim::sim
