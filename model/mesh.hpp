@@ -1,4 +1,6 @@
 // An indexed triangle mesh with one unit normal per vertex: the input of every form of the unit.
+// (model/io/import.hpp and weld() in model/mesh_build.hpp also use it before welding, as
+// their comments say; load_mesh returns it as described here.)
 #pragma once
 
 #include <cstdint>
@@ -28,5 +30,15 @@ struct BoundingBox {
 };
 
 BoundingBox bounding_box(const Mesh& mesh);
+
+bool is_finite(const glm::dvec3& v);
+
+// The zero-area test of the tessellator, shared with mesh statistics so that both report the
+// same count: |e1 x e2| <= 1e-12 |e1| |e2| means the two edges are parallel up to rounding (or
+// one of them has zero length).
+bool is_zero_area(const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3);
+
+// A vector as messages show it: "(x, y, z)" with 9 significant digits.
+std::string format_vec(const glm::dvec3& v);
 
 }  // namespace tessim

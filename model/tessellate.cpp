@@ -12,20 +12,6 @@ namespace tessim {
 
 namespace {
 
-// Relative tolerance of the zero-area test: |e1 x e2| <= kZeroArea |e1| |e2| means the two
-// edges are parallel up to rounding (or one of them has zero length).
-constexpr double kZeroArea = 1e-12;
-
-bool is_zero_area(const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3) {
-  const glm::dvec3 e1 = p2 - p1;
-  const glm::dvec3 e2 = p3 - p1;
-  return !(glm::length(glm::cross(e1, e2)) > kZeroArea * glm::length(e1) * glm::length(e2));
-}
-
-bool is_finite(const glm::dvec3& x) {
-  return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
-}
-
 // Everything that could make the stream fail is checked before the first patch reaches the
 // sink, so a sink writing a file never sees a partial mesh followed by an error.
 void validate(const Mesh& mesh, int L) {

@@ -1,0 +1,163 @@
+// Streamed export of tessellated meshes: binary little-endian PLY or ASCII OBJ
+// (MeshWriter in model/mesh_io.hpp).
+#include <bit>
+#include <charconv>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "model/io/format.hpp"
+#include "model/mesh_io.hpp"
+#include "model/output_file.hpp"
+#include "model/pattern.hpp"
+
+namespace tessim {
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "the PLY writer stores native doubles and uint32 as binary_little_endian");
+
+void append_number(std::string& s, double x) {
+  char buf[32];
+  // Shortest representation that reads back as the same double.
+  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, x);
+  s.append(buf, ec == std::errc() ? ptr : buf);
+}
+
+// An OBJ line "<keyword> x y z\n".
+void append_obj_vec(std::string& s, const char* keyword, const glm::dvec3& v) {
+  s += keyword;
+  for (int i = 0; i < 3; ++i) {
+    s += ' ';
+    append_number(s, v[i]);
+  }
+  s += '\n';
+}
+
+void append_raw(std::string& s, const void* data, std::size_t size) { s.append(static_cast<const char*>(data), size); }
+
+}  // namespace
+
+bool is_supported_output(const std::filesystem::path& path) {
+  const std::string ext = io::lower_extension(path);
+  return ext == ".ply" || ext == ".obj";
+}
+
+struct MeshWriter::Impl {
+  Impl(const std::filesystem::path& target, bool ply, std::uint64_t vertices, std::uint64_t triangles)
+      : path(target), is_ply(ply), out(target, ply), total_vertices(vertices), total_triangles(triangles) {}
+
+  std::filesystem::path path;
+  bool is_ply;
+  AtomicOutput out;
+  std::uint64_t total_vertices;
+  std::uint64_t total_triangles;
+  std::uint64_t vertices = 0;
+  std::uint64_t triangles = 0;
+  bool finished = false;
+  // PLY keeps all faces after all vertices; the faces follow from the pattern, so only the
+  // sequence of factors is kept (run-length coded) and the face list is generated in finish().
+  std::vector<std::pair<int, std::uint64_t>> factor_runs;
+  std::string buffer;
+
+  void write_buffer() {
+    out.stream().write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    buffer.clear();
+    if (!out.stream()) throw InputError(path.string(), "output", "write failed");
+  }
+};
+
+MeshWriter::MeshWriter(const std::filesystem::path& path, std::uint64_t total_vertices, std::uint64_t total_triangles) {
+  if (!is_supported_output(path))
+    throw InputError(path.string(), "output", "unsupported extension '" + path.extension().string() + "' (use .ply or .obj)");
+  const bool ply = io::lower_extension(path) == ".ply";
+  if (ply && total_vertices > std::numeric_limits<std::uint32_t>::max())
+    throw InputError(path.string(), "output", std::to_string(total_vertices) + " vertices do not fit PLY's 32-bit indices");
+  impl_ = std::make_unique<Impl>(path, ply, total_vertices, total_triangles);
+  std::string& h = impl_->buffer;
+  if (ply) {
+    h += "ply\nformat binary_little_endian 1.0\ncomment tessim tessellated mesh\n";
+    h += "element vertex " + std::to_string(total_vertices) + "\n";
+    for (const char* p : {"x", "y", "z", "nx", "ny", "nz"}) h += std::string("property double ") + p + "\n";
+    h += "element face " + std::to_string(total_triangles) + "\n";
+    h += "property list uchar uint vertex_indices\nend_header\n";
+  } else {
+    h += "# tessim tessellated mesh: " + std::to_string(total_vertices) + " vertices, " +
+         std::to_string(total_triangles) + " triangles\n";
+  }
+  impl_->write_buffer();
+}
+
+MeshWriter::~MeshWriter() = default;
+
+void MeshWriter::add_patch(int L, const glm::dvec3* positions, const glm::dvec3* normals) {
+  Impl& w = *impl_;
+  if (w.finished) throw std::logic_error("MeshWriter::add_patch after finish()");
+  if (L < 1 || L > kMaxTessFactor) throw std::logic_error("MeshWriter::add_patch: factor " + std::to_string(L) + " out of range");
+  const auto n = static_cast<std::uint64_t>(pattern_vertex_count(L));
+  const auto t = static_cast<std::uint64_t>(pattern_triangle_count(L));
+  if (w.vertices + n > w.total_vertices || w.triangles + t > w.total_triangles)
+    throw std::logic_error("MeshWriter::add_patch: more than the declared " + std::to_string(w.total_vertices) +
+                           " vertices / " + std::to_string(w.total_triangles) + " triangles");
+
+  std::string& s = w.buffer;
+  if (w.is_ply) {
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const double record[6] = {positions[i].x, positions[i].y, positions[i].z, normals[i].x, normals[i].y, normals[i].z};
+      append_raw(s, record, sizeof record);
+    }
+    if (!w.factor_runs.empty() && w.factor_runs.back().first == L) ++w.factor_runs.back().second;
+    else w.factor_runs.emplace_back(L, 1);
+  } else {
+    for (std::uint64_t i = 0; i < n; ++i) {
+      append_obj_vec(s, "v", positions[i]);
+      append_obj_vec(s, "vn", normals[i]);
+    }
+    for (const glm::uvec3& tri : pattern_triangles(L)) {
+      s += 'f';
+      for (int c = 0; c < 3; ++c) {
+        const std::string index = std::to_string(w.vertices + tri[c] + 1);  // OBJ counts from 1
+        s += ' ';
+        s += index;
+        s += "//";
+        s += index;
+      }
+      s += '\n';
+    }
+  }
+  w.vertices += n;
+  w.triangles += t;
+  w.write_buffer();
+}
+
+void MeshWriter::finish() {
+  Impl& w = *impl_;
+  if (w.finished) throw std::logic_error("MeshWriter::finish called twice");
+  if (w.vertices != w.total_vertices || w.triangles != w.total_triangles)
+    throw std::logic_error("MeshWriter::finish: " + std::to_string(w.vertices) + " of " + std::to_string(w.total_vertices) +
+                           " vertices and " + std::to_string(w.triangles) + " of " + std::to_string(w.total_triangles) +
+                           " triangles were written");
+  if (w.is_ply) {
+    std::uint32_t base = 0;
+    for (const auto& [L, count] : w.factor_runs) {
+      const std::vector<glm::uvec3> pattern = pattern_triangles(L);
+      for (std::uint64_t p = 0; p < count; ++p) {
+        for (const glm::uvec3& tri : pattern) {
+          const unsigned char corners = 3;
+          const std::uint32_t indices[3] = {base + tri[0], base + tri[1], base + tri[2]};
+          append_raw(w.buffer, &corners, 1);
+          append_raw(w.buffer, indices, sizeof indices);
+        }
+        base += static_cast<std::uint32_t>(pattern_vertex_count(L));
+        if (w.buffer.size() > (1u << 20)) w.write_buffer();
+      }
+    }
+    w.write_buffer();
+  }
+  w.out.commit();
+  w.finished = true;
+}
+
+}  // namespace tessim
