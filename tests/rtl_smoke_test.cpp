@@ -20,7 +20,9 @@
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/cpg.hpp"
+#include "sim/datapath.hpp"
 #include "sim/fixed.hpp"
+#include "sim/int_ops.hpp"
 #include "sim/unit_io.hpp"
 
 namespace tessim {
@@ -32,60 +34,16 @@ using sim::VertexFx;
 
 // ---- the expected output, computed from the C++ definitions of the arithmetic ----
 
-// Operands (A, B, C) of the 14 INT ops (docs/microarchitecture.md §8): net index for ops 0..8
-// (geometry 0..5, normal 6..8), temporary index for ops 9..13.
-constexpr std::array<std::array<int, 3>, 14> kOperands{{
-    {0, 1, 4}, {1, 2, 5}, {2, 3, 6}, {4, 5, 7}, {5, 6, 8}, {7, 8, 9},  // geometry L1
-    {0, 1, 3}, {1, 2, 4}, {3, 4, 5},                                  // normal L1
-    {0, 1, 3}, {1, 2, 4}, {3, 4, 5},                                  // geometry L2
-    {6, 7, 8},                                                        // normal L2
-    {9, 10, 11},                                                      // geometry L3
-}};
-
+// The untimed datapath (sim/datapath.hpp): control points, then de Casteljau level by level.
 std::vector<VertexFx> expected_patch(const TriangleFx& tri, NormalMode mode, const sim::NumberFormat& f) {
-  const sim::ControlPointsFx cp = sim::compute_control_points(tri, mode, f);
-  const bool linear = mode == NormalMode::Linear;
-  std::vector<VertexFx> out;
-  for (const DomainPoint& dp : pattern_points(tri.L)) {
-    const std::int64_t u = sim::bary_weight(dp.j, tri.L, f.bary_bits);
-    const std::int64_t v = sim::bary_weight(dp.k, tri.L, f.bary_bits);
-    const std::int64_t w = f.bary_one() - u - v;
-    std::array<FxVec, 14> t{};
-    auto op = [&](int o, const FxVec& a, const FxVec& b, const FxVec& c) {
-      t[o] = sim::int_op(w, u, v, a, b, c, f.bary_bits);
-    };
-    for (int o = 0; o < 6; ++o) op(o, cp.b[kOperands[o][0]], cp.b[kOperands[o][1]], cp.b[kOperands[o][2]]);
-    if (linear) {
-      op(6, cp.n[0], cp.n[2], cp.n[5]);
-    } else {
-      for (int o = 6; o < 9; ++o) op(o, cp.n[kOperands[o][0]], cp.n[kOperands[o][1]], cp.n[kOperands[o][2]]);
-      op(12, t[6], t[7], t[8]);
-    }
-    for (int o = 9; o < 12; ++o) op(o, t[kOperands[o][0]], t[kOperands[o][1]], t[kOperands[o][2]]);
-    op(13, t[9], t[10], t[11]);
-    VertexFx vx;
-    vx.pos = t[13];
-    vx.nrm = linear ? t[6] : t[12];
-    vx.u = u;
-    vx.v = v;
-    vx.j = dp.j;
-    vx.k = dp.k;
-    vx.L = tri.L;
-    vx.id = tri.id;
-    vx.last = dp.j == 0 && dp.k == tri.L;
-    vx.flags = cp.flags;
-    out.push_back(vx);
-  }
-  return out;
+  return sim::evaluate_patch(tri, mode, f);
 }
 
 // Cycles in which the scheduler issues the ops of a vertex that has all N INT blocks to
 // itself (the oldest context always does), latency 1: greedy in op order, a dependent op one
 // cycle after its inputs issued.
 int lone_vertex_issue_cycles(int n_blocks, bool linear) {
-  const std::array<std::uint32_t, 14> deps{0, 0, 0, 0, 0, 0, 0, 0, 0, 0b1011u, 0b10110u, 0b111000u,
-                                           0b111000000u, 0b111000000000u};
-  std::uint32_t issued = linear ? (1u << 7 | 1u << 8 | 1u << 12) : 0u;
+  std::uint32_t issued = sim::absent_ops(linear ? NormalMode::Linear : NormalMode::Quadratic);
   std::uint32_t done = issued;
   int cycles = 0;
   while (done != (1u << 14) - 1) {
@@ -93,7 +51,8 @@ int lone_vertex_issue_cycles(int n_blocks, bool linear) {
     std::uint32_t now = 0;
     int slots = n_blocks;
     for (int o = 0; o < 14 && slots > 0; ++o) {
-      if (!(issued >> o & 1u) && (done & deps[o]) == deps[o]) {
+      const std::uint32_t deps = sim::kIntOps[static_cast<std::size_t>(o)].depends_on;
+      if (!(issued >> o & 1u) && (done & deps) == deps) {
         now |= 1u << o;
         --slots;
       }

@@ -29,6 +29,7 @@
 #include "model/pn.hpp"
 #include "sim/config.hpp"
 #include "sim/cpg.hpp"
+#include "sim/datapath.hpp"
 #include "sim/gpe.hpp"
 #include "sim/host.hpp"
 #include "sim/simulate.hpp"
@@ -98,43 +99,10 @@ std::vector<VertexFx> run_vertices(const Mesh& mesh, const UnitConfig& cfg, SimR
   return out;
 }
 
-// One de Casteljau level of degree D -> D - 1 with the unit's INT operation.
-template <int D>
-std::array<FxVec, D*(D + 1) / 2> casteljau_level(const std::array<FxVec, (D + 1) * (D + 2) / 2>& net,
-                                                 std::int64_t w, std::int64_t u, std::int64_t v, int B) {
-  std::array<FxVec, D*(D + 1) / 2> next{};
-  for (int k = 0; k < D; ++k)
-    for (int j = 0; j + k < D; ++j)
-      next[static_cast<std::size_t>(net_index(j, k, D - 1))] =
-          int_op(w, u, v, net[static_cast<std::size_t>(net_index(j, k, D))],
-                 net[static_cast<std::size_t>(net_index(j + 1, k, D))],
-                 net[static_cast<std::size_t>(net_index(j, k + 1, D))], B);
-  return next;
-}
-
-// The datapath written out directly: control points, then de Casteljau with the unit's INT
-// operation, in the level order of docs/mathematics.md §6. The cycle model must produce exactly
-// these values whatever its schedule.
+// The untimed datapath (sim/datapath.hpp) for one vertex of a triangle's patch.
 VertexFx direct_vertex(const TriangleFx& tri, int j, int k, const UnitConfig& cfg) {
-  const ControlPointsFx cp = compute_control_points(tri, cfg.normals, cfg.format);
-  const int B = cfg.format.bary_bits;
-  const std::int64_t u = bary_weight(j, tri.L, B), v = bary_weight(k, tri.L, B);
-  const std::int64_t w = cfg.format.bary_one() - u - v;
-  VertexFx out;
-  out.pos = casteljau_level<1>(casteljau_level<2>(casteljau_level<3>(cp.b, w, u, v, B), w, u, v, B), w, u, v, B)[0];
-  if (cfg.normals == NormalMode::Linear)
-    out.nrm = int_op(w, u, v, cp.n[0], cp.n[2], cp.n[5], B);
-  else
-    out.nrm = casteljau_level<1>(casteljau_level<2>(cp.n, w, u, v, B), w, u, v, B)[0];
-  out.u = u;
-  out.v = v;
-  out.j = j;
-  out.k = k;
-  out.L = tri.L;
-  out.id = tri.id;
-  out.last = k == tri.L;
-  out.flags = cp.flags;
-  return out;
+  return evaluate_vertex(compute_control_points(tri, cfg.normals, cfg.format), j, k, tri.L, tri.id, cfg.normals,
+                         cfg.format);
 }
 
 // Steady state over a whole number of periods: the retirement interval over a window of
