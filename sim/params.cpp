@@ -140,6 +140,16 @@ std::string range_text(const ParamSpec& p) {
   return "";
 }
 
+std::vector<std::string> alias_list(const ParamSpec& p) {
+  std::vector<std::string> list;
+  for (std::string_view rest = p.aliases; !rest.empty();) {
+    const auto comma = rest.find(',');
+    list.emplace_back(rest.substr(0, comma));
+    rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+  }
+  return list;
+}
+
 std::string cli_names(const ParamSpec& p) {
   std::string names = p.flag;
   if (*p.aliases) names += std::string(",") + p.aliases;
@@ -151,12 +161,7 @@ nlohmann::json schema_json() {
   json params = json::array();
   json rtl = json::object();
   for (const ParamSpec& p : kParams) {
-    json aliases = json::array();
-    for (std::string_view rest = p.aliases; !rest.empty();) {
-      const auto comma = rest.find(',');
-      aliases.push_back(std::string(rest.substr(0, comma)));
-      rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
-    }
+    json aliases = alias_list(p);
     json e = {
         {"key", p.key},
         {"flag", p.flag},

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -50,6 +51,8 @@ const ParamSpec* find_param(std::string_view key);  // nullptr if unknown
 
 // "1..32", "0..0.99", "quadratic, reflect, linear, derivative", "0..2^64-1".
 std::string range_text(const ParamSpec& p);
+// The aliases one by one: {"-L"}, {"--int"}, {}.
+std::vector<std::string> alias_list(const ParamSpec& p);
 // The CLI11 name string of the flag: "-L,--tess-factor", "--int-blocks,--int", ...
 std::string cli_names(const ParamSpec& p);
 
