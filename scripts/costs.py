@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """Hardware cost of every RTL configuration in a sweep's results, joined to its rows.
 
-    costs.py RESULTS.csv [-o OUT.csv] [--where KEY=V[,V...] ...] [--cache DIR] [--no-xilinx]
+    costs.py RESULTS.csv [-o OUT.csv] [--where KEY=V[,V...] ...] [--cache DIR] [--no-xilinx] [--tessim PATH]
              [--dry-run | --cached-only | --require-cached]
 
-For each distinct RTL configuration among the rows (int_blocks, int_latency, te_contexts,
-coord_int_bits, coord_frac_bits, bary_bits, tri_fifo_depth, vtx_fifo_depth; the normal mode is
-an input of the RTL and the GPE is not part of it) runs scripts/synth.sh, which synthesizes the
+For each distinct RTL configuration among the rows (the parameters that `tessim schema` maps to a
+tess_unit parameter: int_blocks, int_latency, te_contexts, coord_int_bits, coord_frac_bits,
+bary_bits, tri_fifo_depth, vtx_fifo_depth; the normal mode is an input of the RTL and the GPE is
+not part of it) runs scripts/synth.sh, which synthesizes the
 whole unit, the CPG and one INT block with Yosys 0.23 (docs/rtl.md, Synthesis: generic `synth`
 cells and flip-flops, `stat -tech cmos` transistors after flip-flop legalisation, `synth_xilinx`
 LUT/FF/DSP, `ltp` logic depth after flatten). Adds to every row of a costed configuration:
@@ -45,17 +46,9 @@ import sweep  # noqa: E402  (shared CSV/JSON writer and reader)
 REPO = Path(__file__).resolve().parent.parent
 CACHE_SCHEMA = 1
 
-# Row parameter -> tess_unit parameter.
-RTL_PARAMS = [
-    ("int_blocks", "IntBlocks"),
-    ("int_latency", "IntLatency"),
-    ("te_contexts", "Contexts"),
-    ("coord_int_bits", "CoordIntBits"),
-    ("coord_frac_bits", "CoordFracBits"),
-    ("bary_bits", "BaryBits"),
-    ("tri_fifo_depth", "TriFifoDepth"),
-    ("vtx_fifo_depth", "VtxFifoDepth"),
-]
+# Row parameter -> tess_unit parameter, from `tessim schema` (set by main()).
+RTL_PARAMS = []
+SYMBOLS = {}  # tess_unit parameter -> symbol of docs/microarchitecture.md
 BLOCK_PREFIX = {"tess_unit": "cost_unit", "tess_cpg": "cost_cpg", "tess_int": "cost_int"}
 
 
@@ -83,10 +76,15 @@ def rtl_config(row):
 
 
 def describe(config):
-    c = dict(config)
-    return (f"N={c['IntBlocks']} latency={c['IntLatency']} V={c['Contexts']} "
-            f"Q{c['CoordIntBits']}.{c['CoordFracBits']} B={c['BaryBits']} "
-            f"FIFOs {c['TriFifoDepth']}/{c['VtxFifoDepth']}")
+    return " ".join(f"{SYMBOLS.get(name) or name}={value}" for name, value in config)
+
+
+def load_rtl_params(tessim):
+    """The parameters of the RTL and their symbols, as `tessim schema` lists them."""
+    sch = sweep.schema(tessim)
+    RTL_PARAMS[:] = [(p["key"], p["rtl"]) for p in sch["parameters"] if p["rtl"]]
+    SYMBOLS.update({p["rtl"]: p["symbol"] for p in sch["parameters"] if p["rtl"]})
+    return sch
 
 
 def snapshot_sources(synth, directory):
@@ -176,6 +174,8 @@ def main(argv):
                     help="cost only the configurations of rows matching all of these")
     ap.add_argument("--cache", default=str(REPO / "docs" / "results" / "costs"), help="cache directory")
     ap.add_argument("--synth", default=str(REPO / "scripts" / "synth.sh"), help="synthesis script")
+    ap.add_argument("--tessim", default=str(sweep.DEFAULT_TESSIM),
+                    help="tessim binary whose `tessim schema` names the RTL parameters (default: build/bin/tessim)")
     ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx (faster; no LUT/FF/DSP columns)")
     ap.add_argument("--dry-run", action="store_true", help="list the configurations and whether they are cached")
     ap.add_argument("--cached-only", action="store_true",
@@ -188,6 +188,11 @@ def main(argv):
     try:
         where = parse_where(args.where)
     except ValueError as e:
+        print(f"costs.py: error: {e}", file=sys.stderr)
+        return 2
+    try:
+        sch = load_rtl_params(args.tessim)
+    except sweep.SpecError as e:
         print(f"costs.py: error: {e}", file=sys.stderr)
         return 2
     if not Path(args.synth).exists():
@@ -268,7 +273,7 @@ def main(argv):
             r.update(cost_columns(results[rtl_config(r)], int(r["int_blocks"])))
             costed += 1
     out = args.output or args.results
-    sweep.write_results(rows, out)
+    sweep.write_results(rows, out, sweep.param_order(sch))
     print(f"costs.py: cost columns on {costed} of {len(rows)} rows -> {out}", file=sys.stderr)
     return 0
 

@@ -2,7 +2,7 @@
 """Parameter sweeps of the cycle model: every point one `tessim sim` run, results as tidy CSV/JSON.
 
     sweep.py SPEC.json -o results.csv [--jobs N] [--shard i/n] [--cache DIR] [--tessim PATH]
-    sweep.py merge PART.csv [PART.csv ...] -o results.csv
+    sweep.py merge PART.csv [PART.csv ...] -o results.csv [--tessim PATH]
 
 SPEC.json (examples in scripts/sweeps/):
 
@@ -15,9 +15,8 @@ SPEC.json (examples in scripts/sweeps/):
     }
 
 A spec without "grids" is one grid (its top-level keys). A scalar stands for a one-element list.
-Keys: every key of a tessim config file (sim/config.hpp: int_blocks, int_latency, te_contexts,
-gpe_cycles, gpe_stall_prob, seed, tess_factor, normals, cpg_mapping, cpg_gpe_cycles,
-coord_int_bits, coord_frac_bits, bary_bits, tri_fifo_depth, vtx_fifo_depth), plus
+Keys: every key of a tessim config file (the "parameters" of `tessim schema`, which this script
+reads: names, column order, defaults; README.md, Configuration files), plus
   mesh    a mesh file; a relative path is looked up next to the spec, then under
           /usr/share/assimp/models;
   errors  true: also measure the fixed-point error of the run against the float64 reference
@@ -67,13 +66,9 @@ REPO = Path(__file__).resolve().parent.parent
 ASSIMP_MODELS = Path("/usr/share/assimp/models")
 CACHE_SCHEMA = 2  # bump when the cache record or the error measurement changes
 
+DEFAULT_TESSIM = REPO / "build" / "bin" / "tessim"
 # Keys that are not tessim configuration keys.
 SWEEP_KEYS = ("mesh", "errors")
-# Column order of the parameters; keys not listed follow in alphabetical order.
-PARAM_ORDER = ["mesh", "tess_factor", "normals", "int_blocks", "int_latency", "te_contexts",
-               "gpe_cycles", "gpe_stall_prob", "seed", "cpg_mapping", "cpg_gpe_cycles",
-               "coord_int_bits", "coord_frac_bits", "bary_bits", "tri_fifo_depth",
-               "vtx_fifo_depth", "errors"]
 # Statistics that are not columns: the config is already the parameter columns, the mesh path
 # is the `mesh` parameter.
 STATS_SKIP = ("config", "mesh")
@@ -81,6 +76,37 @@ STATS_SKIP = ("config", "mesh")
 
 class SpecError(Exception):
     pass
+
+
+# --------------------------------------------------------------------------- tessim schema
+
+_SCHEMAS = {}
+
+
+def schema(tessim):
+    """`tessim schema`: the unit's parameters (key, flag, kind, type, range, default, RTL name),
+    the INT operations and the CPG cycles per normal mode and coordinate format, as C++ defines
+    them (sim/params.hpp). Raises SpecError when the binary cannot say."""
+    tessim = str(tessim)
+    if tessim not in _SCHEMAS:
+        try:
+            proc = subprocess.run([tessim, "schema"], capture_output=True, text=True)
+        except OSError as e:
+            raise SpecError(f"tessim binary '{tessim}' cannot run (build it, or give --tessim): {e}")
+        if proc.returncode != 0:
+            raise SpecError(f"'{tessim} schema' exited {proc.returncode}: {proc.stderr.strip()}")
+        _SCHEMAS[tessim] = json.loads(proc.stdout)
+    return _SCHEMAS[tessim]
+
+
+def param_order(sch):
+    """Column order of the parameters: the mesh, the schema's parameters in its order, errors.
+    Keys not listed follow in alphabetical order."""
+    return ["mesh"] + [p["key"] for p in sch["parameters"]] + ["errors"]
+
+
+def defaults(sch):
+    return {p["key"]: p["default"] for p in sch["parameters"]}
 
 
 # --------------------------------------------------------------------------- spec
@@ -300,14 +326,14 @@ def flatten(prefix, value, out):
         out[prefix] = value
 
 
-def make_row(index, params, grids, key, record, tessim_sha):
+def make_row(index, params, grids, key, record, tessim_sha, order):
     row = {"point": index, "key": key[:16], "grids": ";".join(grids), "status": record["status"]}
     conf = dict(params)
     if record["status"] == "ok":
         for k, v in record["stats"]["config"].items():
             conf.setdefault(k, v)
-    known = [k for k in PARAM_ORDER if k in conf]
-    for k in known + sorted(k for k in conf if k not in PARAM_ORDER):
+    known = [k for k in order if k in conf]
+    for k in known + sorted(k for k in conf if k not in order):
         row[k] = conf[k]
     if record["status"] == "ok":
         stats = {k: v for k, v in record["stats"].items() if k not in STATS_SKIP}
@@ -333,13 +359,13 @@ def natural_key(name):
     return [(0, int(p), "") if p.isdigit() else (1, 0, p) for p in name.split(".")]
 
 
-def columns_of(rows):
+def columns_of(rows, order):
     """Lead columns, parameters, headline statistics, the other statistics (natural order),
     the error and cost columns, then message and binary hash."""
     present = set()
     for r in rows:
         present.update(r)
-    params = [k for k in PARAM_ORDER if k in present]
+    params = [k for k in order if k in present]
     rest = sorted(present - set(LEAD_COLUMNS) - set(params) - set(HEADLINE_STATS) - set(TRAIL_COLUMNS),
                   key=natural_key)
     stats = [k for k in rest if not k.startswith(("error.", "cost_"))]
@@ -370,9 +396,10 @@ def write_atomic(path, text):
     os.replace(tmp, path)
 
 
-def write_results(rows, out_csv):
+def write_results(rows, out_csv, order):
+    """`order`: param_order() of the schema."""
     out_csv = Path(out_csv)
-    cols = columns_of(rows)
+    cols = columns_of(rows, order)
     import io
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
@@ -435,16 +462,23 @@ class Progress:
         sys.stderr.flush()
 
 
-def expected_cycles(params, triangles):
-    """Rough simulated cycles of a point (for the ETA only)."""
-    L = int(params.get("tess_factor", 4))
+def expected_cycles(params, triangles, sch):
+    """Rough simulated cycles of a point (for the ETA only): the slowest of the INT blocks, the
+    geometry engine and the CPG, with the INT ops and CPG cycles that `tessim schema` gives."""
+    p = dict(defaults(sch))
+    p.update(params)
+    L = int(p["tess_factor"])
     patch = (L + 1) * (L + 2) // 2
-    ops = 11 if params.get("normals") == "linear" else 14
-    n = int(params.get("int_blocks", 2))
-    k = float(params.get("gpe_cycles", 8)) / (1.0 - float(params.get("gpe_stall_prob", 0.0)))
-    w = 1 + int(params.get("coord_int_bits", 3)) + int(params.get("coord_frac_bits", 20))
-    cpg = 3 * (3 * w + 9) + 3
-    per_vertex = max(ops / n, k, cpg / patch, 1.0)
+    mode = str(p["normals"])
+    ops = sch["int_ops_per_mode"].get(mode, sch["int_ops_per_mode"]["quadratic"])["ops_per_vertex"]
+    k = float(p["gpe_cycles"]) / (1.0 - min(float(p["gpe_stall_prob"]), 0.99))
+    if p["cpg_mapping"] == "gpe":
+        cpg = int(p["cpg_gpe_cycles"])
+    else:
+        rows = sch["cpg_cycles"].get(mode, sch["cpg_cycles"]["quadratic"])
+        cpg = next((r["cycles"] for r in rows if r["coord_int_bits"] == p["coord_int_bits"]
+                    and r["coord_frac_bits"] == p["coord_frac_bits"]), max(r["cycles"] for r in rows))
+    per_vertex = max(ops / int(p["int_blocks"]), k, cpg / patch, 1.0)
     cost = triangles * patch * per_vertex
     return cost * 3 if params["errors"] else cost
 
@@ -469,7 +503,7 @@ def cmd_sweep(argv):
     ap.add_argument("--jobs", "-j", type=int, default=os.cpu_count() or 1, help="points run in parallel (default: cores)")
     ap.add_argument("--shard", help="i/n: run only every n-th point starting at the i-th (1-based)")
     ap.add_argument("--cache", help="cache directory (default: OUTPUT.cache)")
-    ap.add_argument("--tessim", default=str(REPO / "build" / "bin" / "tessim"), help="tessim binary (default: build/bin/tessim)")
+    ap.add_argument("--tessim", default=str(DEFAULT_TESSIM), help="tessim binary (default: build/bin/tessim)")
     args = ap.parse_args(argv)
 
     try:
@@ -485,6 +519,7 @@ def cmd_sweep(argv):
         tessim = Path(args.tessim)
         if not os.access(tessim, os.X_OK):
             raise SpecError(f"tessim binary '{tessim}' not found (build it, or give --tessim)")
+        sch = schema(tessim)
     except SpecError as e:
         print(f"sweep.py: error: {e}", file=sys.stderr)
         return 2
@@ -518,7 +553,7 @@ def cmd_sweep(argv):
                     pass  # a damaged entry is simply recomputed
             todo.append((i, p, g, key))
         unique_todo = list({key: (i, p, g, key) for i, p, g, key in todo}.values())
-        weights = {key: expected_cycles(p, triangles[p["mesh"]]) for _, p, _, key in unique_todo}
+        weights = {key: expected_cycles(p, triangles[p["mesh"]], sch) for _, p, _, key in unique_todo}
         progress = Progress(len(keyed), len(keyed) - len(unique_todo), sum(weights.values()))
 
         crashed = []
@@ -559,8 +594,9 @@ def cmd_sweep(argv):
                   "rerun the same command to resume", file=sys.stderr)
             return 130
 
-        rows = [make_row(i, p, g, key, records[key], tessim_sha) for i, p, g, key in keyed if key in records]
-        write_results(rows, args.output)
+        order = param_order(sch)
+        rows = [make_row(i, p, g, key, records[key], tessim_sha, order) for i, p, g, key in keyed if key in records]
+        write_results(rows, args.output, order)
         rejected = [r for r in rows if r["status"] != "ok"]
         if rejected:
             print(f"sweep.py: {len(rejected)} points rejected as bad input (status input_error), "
@@ -591,7 +627,14 @@ def cmd_merge(argv):
                                  description="Merge the results of shards (CSV or JSON) into one table.")
     ap.add_argument("parts", nargs="+", help="results of the shards (X.csv reads X.json when it exists)")
     ap.add_argument("-o", "--output", required=True, help="merged CSV (and JSON next to it)")
+    ap.add_argument("--tessim", default=str(DEFAULT_TESSIM),
+                    help="tessim binary whose schema orders the parameter columns (default: build/bin/tessim)")
     args = ap.parse_args(argv)
+    try:
+        order = param_order(schema(args.tessim))
+    except SpecError as e:
+        print(f"sweep.py: error: {e}", file=sys.stderr)
+        return 2
     rows, seen = [], set()
     for part in args.parts:
         for r in read_rows(part):
@@ -599,7 +642,7 @@ def cmd_merge(argv):
                 seen.add(r["key"])
                 rows.append(r)
     rows.sort(key=lambda r: int(r["point"]))
-    write_results(rows, args.output)
+    write_results(rows, args.output, order)
     print(f"sweep.py: merged {len(rows)} rows from {len(args.parts)} parts -> {args.output}", file=sys.stderr)
     return 0
 

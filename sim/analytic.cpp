@@ -14,7 +14,7 @@ namespace tessim::sim {
 
 namespace {
 
-bool op_exists(int op, NormalMode normals) { return (absent_ops(normals) >> op & 1u) == 0; }
+bool op_exists(int op, NormalMode normals) { return (int_ops::absent_ops(normals) >> op & 1u) == 0; }
 
 // Expected cycles the GPE needs per vertex: the accept cycle, K - 1 busy cycles, then a
 // geometric wait for a cycle without a random stall (1 / (1 - p) cycles including the accept).
@@ -26,17 +26,17 @@ double gpe_cycles_per_vertex(const UnitConfig& cfg) {
 
 int single_vertex_span(int int_blocks, int int_latency, NormalMode normals) {
   // issue[o]: cycle (from the allocation cycle 0) in which op o issues; 0 = not yet.
-  std::array<int, kIntOpsPerVertex> issue{};
+  std::array<int, int_ops::kOpCount> issue{};
   int remaining = 0;
-  for (int o = 0; o < kIntOpsPerVertex; ++o) remaining += op_exists(o, normals) ? 1 : 0;
+  for (int o = 0; o < int_ops::kOpCount; ++o) remaining += op_exists(o, normals) ? 1 : 0;
   int last = 0;
   for (int t = 1; remaining > 0; ++t) {
     int issued_now = 0;
-    for (int o = 0; o < kIntOpsPerVertex && issued_now < int_blocks; ++o) {
+    for (int o = 0; o < int_ops::kOpCount && issued_now < int_blocks; ++o) {
       if (!op_exists(o, normals) || issue[o] != 0) continue;
       bool ready = true;
-      for (int d = 0; d < kIntOpsPerVertex; ++d) {
-        if (!(kIntOps[static_cast<std::size_t>(o)].depends_on >> d & 1u) || !op_exists(d, normals)) continue;
+      for (int d = 0; d < int_ops::kOpCount; ++d) {
+        if (!(int_ops::kIntOps[static_cast<std::size_t>(o)].depends >> d & 1u) || !op_exists(d, normals)) continue;
         if (issue[d] == 0 || issue[d] + int_latency > t) ready = false;
       }
       if (!ready) continue;
@@ -51,7 +51,7 @@ int single_vertex_span(int int_blocks, int int_latency, NormalMode normals) {
 
 AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles) {
   AnalyticPrediction p;
-  p.ops_per_vertex = kIntOpsPerVertex - std::popcount(absent_ops(cfg.normals));
+  p.ops_per_vertex = int_ops::ops_per_vertex(cfg.normals);
   p.patch_vertices = pattern_vertex_count(cfg.tess_factor);
   p.cpg_cycles = cpg_cycles;
   p.int_issue = static_cast<double>(p.ops_per_vertex) / cfg.int_blocks;

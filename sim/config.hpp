@@ -1,6 +1,7 @@
 // Every parameter of the unit and its environment, in one type. JSON config files and the
 // command line both land here; validate() is the single place where ranges are checked.
-// README.md (Configuration files) and docs/microarchitecture.md §1 list the keys.
+// sim/params.hpp describes every field (key, flag, range, default, ...); README.md
+// (Configuration files) lists them.
 #pragma once
 
 #include <cstdint>
@@ -39,7 +40,7 @@ struct UnitConfig {
   bool operator==(const UnitConfig&) const = default;
 };
 
-// JSON: an object whose keys are the field names above (format fields flattened:
+// JSON: an object whose keys are the parameters of sim/params.hpp (format fields flattened:
 // coord_int_bits, coord_frac_bits, bary_bits; enums as strings). Unknown keys, wrong types
 // and out-of-range values are InputErrors naming the file and the key.
 void apply_json(UnitConfig& cfg, const nlohmann::json& j, const std::string& source);

@@ -1,76 +1,73 @@
-// The 14 INT operations of one vertex, defined once (docs/microarchitecture.md §8): de Casteljau
-// on the cubic geometry net (ops 0-5, 9-11, 13) and the quadratic normal net (ops 6-8, 12).
-// One INT operation is w·A + u·B + v·C per component (sim/fixed.hpp, int_op). The cycle model's
-// scheduler, the untimed datapath and `tessim schema` read this table.
+// The 14 INT operations of one vertex (docs/microarchitecture.md §8): operand sources, level
+// and dependences, defined once for the cycle model, `tessim schema` and the scripts that read
+// it. One INT op is w·A + u·B + v·C per component (int_op, sim/fixed.hpp).
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 
 #include "model/normal_mode.hpp"
 
-namespace tessim::sim {
+namespace tessim::sim::int_ops {
 
-constexpr int kIntOpsPerVertex = 14;
+// Where an operand comes from: the geometry net b, the normal net n (of the context's
+// control-point buffer) or the context's temporaries T (results of earlier ops).
+enum class Net : std::uint8_t { B, N, T };
 
-// Where an operand comes from: the control-point buffer's geometry net b0..b9 (Bernstein
-// order of sim/cpg.hpp), its normal net n0..n5, or the context's temporaries T0..T13.
-enum class OperandSpace : std::uint8_t { GeometryNet, NormalNet, Temp };
-
-struct IntOperand {
-  OperandSpace space;
+struct Operand {
+  Net net;
   std::uint8_t index;
 };
 
-struct IntOpInfo {
-  const char* level;                    // "geometry L1", ..., for tables and traces
-  std::array<IntOperand, 3> operands;   // A (weight w), B (weight u), C (weight v)
-  std::uint32_t depends_on;             // bit o: needs T[o]
+constexpr Operand b(int i) { return {Net::B, static_cast<std::uint8_t>(i)}; }
+constexpr Operand n(int i) { return {Net::N, static_cast<std::uint8_t>(i)}; }
+constexpr Operand t(int i) { return {Net::T, static_cast<std::uint8_t>(i)}; }
+constexpr std::uint32_t bit(int op) { return std::uint32_t{1} << op; }
+
+struct IntOp {
+  int op;                        // index 0..13; the result is temporary T[op]
+  int level;                     // de Casteljau level 1..3
+  const char* what;              // "geometry" or "normal", as in the doc's table
+  std::array<Operand, 3> operands;  // A, B, C (quadratic and reflect normals)
+  std::uint32_t depends;         // bit o: needs the result of op o
 };
 
-namespace int_ops_detail {
-constexpr IntOperand b(int i) { return {OperandSpace::GeometryNet, static_cast<std::uint8_t>(i)}; }
-constexpr IntOperand n(int i) { return {OperandSpace::NormalNet, static_cast<std::uint8_t>(i)}; }
-constexpr IntOperand t(int i) { return {OperandSpace::Temp, static_cast<std::uint8_t>(i)}; }
-constexpr std::uint32_t bits(int a, int b, int c) { return (1u << a) | (1u << b) | (1u << c); }
-}  // namespace int_ops_detail
+inline constexpr int kOpCount = 14;
 
-// Quadratic and reflect normals. Linear mode replaces op 6 and drops ops 7, 8, 12 (below).
-inline constexpr std::array<IntOpInfo, kIntOpsPerVertex> kIntOps = [] {
-  using namespace int_ops_detail;
-  return std::array<IntOpInfo, kIntOpsPerVertex>{{
-      {"geometry L1", {b(0), b(1), b(4)}, 0},
-      {"geometry L1", {b(1), b(2), b(5)}, 0},
-      {"geometry L1", {b(2), b(3), b(6)}, 0},
-      {"geometry L1", {b(4), b(5), b(7)}, 0},
-      {"geometry L1", {b(5), b(6), b(8)}, 0},
-      {"geometry L1", {b(7), b(8), b(9)}, 0},
-      {"normal L1", {n(0), n(1), n(3)}, 0},
-      {"normal L1", {n(1), n(2), n(4)}, 0},
-      {"normal L1", {n(3), n(4), n(5)}, 0},
-      {"geometry L2", {t(0), t(1), t(3)}, bits(0, 1, 3)},
-      {"geometry L2", {t(1), t(2), t(4)}, bits(1, 2, 4)},
-      {"geometry L2", {t(3), t(4), t(5)}, bits(3, 4, 5)},
-      {"normal L2", {t(6), t(7), t(8)}, bits(6, 7, 8)},
-      {"geometry L3", {t(9), t(10), t(11)}, bits(9, 10, 11)},
-  }};
-}();
+inline constexpr std::array<IntOp, kOpCount> kIntOps{{
+    {0, 1, "geometry", {b(0), b(1), b(4)}, 0},
+    {1, 1, "geometry", {b(1), b(2), b(5)}, 0},
+    {2, 1, "geometry", {b(2), b(3), b(6)}, 0},
+    {3, 1, "geometry", {b(4), b(5), b(7)}, 0},
+    {4, 1, "geometry", {b(5), b(6), b(8)}, 0},
+    {5, 1, "geometry", {b(7), b(8), b(9)}, 0},
+    {6, 1, "normal", {n(0), n(1), n(3)}, 0},
+    {7, 1, "normal", {n(1), n(2), n(4)}, 0},
+    {8, 1, "normal", {n(3), n(4), n(5)}, 0},
+    {9, 2, "geometry", {t(0), t(1), t(3)}, bit(0) | bit(1) | bit(3)},
+    {10, 2, "geometry", {t(1), t(2), t(4)}, bit(1) | bit(2) | bit(4)},
+    {11, 2, "geometry", {t(3), t(4), t(5)}, bit(3) | bit(4) | bit(5)},
+    {12, 2, "normal", {t(6), t(7), t(8)}, bit(6) | bit(7) | bit(8)},
+    {13, 3, "geometry", {t(9), t(10), t(11)}, bit(9) | bit(10) | bit(11)},
+}};
 
-// Linear normals: op 6 is w N1 + u N2 + v N3 and is the output normal.
-inline constexpr IntOpInfo kLinearNormalOp = {"normal (linear)",
-                                              {int_ops_detail::n(0), int_ops_detail::n(2), int_ops_detail::n(5)}, 0};
-inline constexpr std::uint32_t kLinearAbsentOps = (1u << 7) | (1u << 8) | (1u << 12);
-constexpr int kPositionOp = 13;
+// Linear normals: op kLinearNormalOp reads N1, N2, N3 instead, and the ops of kLinearAbsent do
+// not exist (allocated already issued and done).
+inline constexpr int kLinearNormalOp = 6;
+inline constexpr std::array<Operand, 3> kLinearNormalOperands{n(0), n(2), n(5)};
+inline constexpr std::uint32_t kLinearAbsent = bit(7) | bit(8) | bit(12);
 
-// The operation table of a normal mode: op 6 replaced for linear normals.
-inline std::array<IntOpInfo, kIntOpsPerVertex> int_ops_for(NormalMode mode) {
-  auto ops = kIntOps;
-  if (mode == NormalMode::Linear) ops[6] = kLinearNormalOp;
-  return ops;
+inline constexpr int kPositionOp = 13;  // T13 is the output position
+constexpr int normal_op(NormalMode m) { return m == NormalMode::Linear ? kLinearNormalOp : 12; }
+constexpr std::uint32_t absent_ops(NormalMode m) { return m == NormalMode::Linear ? kLinearAbsent : 0; }
+constexpr std::array<Operand, 3> operands(int op, NormalMode m) {
+  return m == NormalMode::Linear && op == kLinearNormalOp ? kLinearNormalOperands
+                                                          : kIntOps[static_cast<std::size_t>(op)].operands;
 }
-// Ops that do not exist in the mode (allocated already issued and done).
-constexpr std::uint32_t absent_ops(NormalMode mode) { return mode == NormalMode::Linear ? kLinearAbsentOps : 0; }
-// The op whose result is the output normal.
-constexpr int normal_op(NormalMode mode) { return mode == NormalMode::Linear ? 6 : 12; }
+// INT ops issued per vertex: 14 (quadratic, reflect), 11 (linear).
+constexpr int ops_per_vertex(NormalMode m) { return kOpCount - std::popcount(absent_ops(m)); }
 
-}  // namespace tessim::sim
+constexpr const char* to_string(Net net) { return net == Net::B ? "b" : net == Net::N ? "n" : "T"; }
+
+}  // namespace tessim::sim::int_ops

@@ -9,6 +9,8 @@
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/cosim/cosim.hpp"
 #include "sim/host.hpp"
+#include "tests/run_tessim.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace tessim::cosim {
 namespace {
@@ -173,6 +175,44 @@ TEST(CosimConfig, MismatchedConfigurationIsRejected) {
   o.variant = "n2";
   o.unit.int_latency = 2;  // no such build
   EXPECT_THROW(run_cosim(random_triangles(2, 1, o.unit.format, 2), o), tessim::InputError);
+}
+
+// `tessim cosim` on the command line: the configuration file's values hold unless a flag is
+// given (the --int default used to overwrite the file's int_blocks), and an int_blocks without
+// an RTL build is bad input naming the builds that exist (it used to be an internal error).
+TEST(CosimCli, ConfigFileIntBlocksSelectTheBuild) {
+  tessim::testing::TempDir dir;
+  const auto cfg = dir.write("n1.json", R"({"int_blocks": 1, "gpe_cycles": 2})");
+  auto r = tessim::testing::run_tessim({"cosim", "--random", "6", "--random-max-L", "3", "--config", cfg.string()},
+                                       dir.path());
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("RTL n1 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("config: N=1 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("K=2 "), std::string::npos) << r.out;
+  // A flag given overrides the file, under its canonical name and its alias.
+  for (const char* flag : {"--int", "--int-blocks"}) {
+    r = tessim::testing::run_tessim(
+        {"cosim", "--random", "6", "--random-max-L", "3", "--config", cfg.string(), flag, "3"}, dir.path());
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("RTL n3 "), std::string::npos) << r.out;
+  }
+}
+
+TEST(CosimCli, IntBlocksWithoutAnRtlBuildIsAnInputError) {
+  tessim::testing::TempDir dir;
+  const auto r = tessim::testing::run_tessim({"cosim", "--random", "4", "--int", "5"}, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("tessim: error: command line: int_blocks: ", 0), 0u) << r.err;
+  for (const std::string& v : rtl::rtl_variants()) EXPECT_NE(r.err.find(v), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  // From a file, the file is named; an unknown --variant is bad input too.
+  const auto cfg = dir.write("n6.json", R"({"int_blocks": 6})");
+  const auto f = tessim::testing::run_tessim({"cosim", "--random", "4", "--config", cfg.string()}, dir.path());
+  EXPECT_EQ(f.status, 2) << f.err;
+  EXPECT_EQ(f.err.rfind("tessim: error: " + cfg.string() + ": int_blocks: ", 0), 0u) << f.err;
+  const auto v = tessim::testing::run_tessim({"cosim", "--random", "4", "--variant", "n9"}, dir.path());
+  EXPECT_EQ(v.status, 2) << v.err;
+  EXPECT_NE(v.err.find("--variant: no RTL build 'n9'; the RTL builds are n1, "), std::string::npos) << v.err;
 }
 
 }  // namespace

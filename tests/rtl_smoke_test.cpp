@@ -43,7 +43,7 @@ std::vector<VertexFx> expected_patch(const TriangleFx& tri, NormalMode mode, con
 // itself (the oldest context always does), latency 1: greedy in op order, a dependent op one
 // cycle after its inputs issued.
 int lone_vertex_issue_cycles(int n_blocks, bool linear) {
-  std::uint32_t issued = sim::absent_ops(linear ? NormalMode::Linear : NormalMode::Quadratic);
+  std::uint32_t issued = sim::int_ops::absent_ops(linear ? NormalMode::Linear : NormalMode::Quadratic);
   std::uint32_t done = issued;
   int cycles = 0;
   while (done != (1u << 14) - 1) {
@@ -51,7 +51,7 @@ int lone_vertex_issue_cycles(int n_blocks, bool linear) {
     std::uint32_t now = 0;
     int slots = n_blocks;
     for (int o = 0; o < 14 && slots > 0; ++o) {
-      const std::uint32_t deps = sim::kIntOps[static_cast<std::size_t>(o)].depends_on;
+      const std::uint32_t deps = sim::int_ops::kIntOps[static_cast<std::size_t>(o)].depends;
       if (!(issued >> o & 1u) && (done & deps) == deps) {
         now |= 1u << o;
         --slots;

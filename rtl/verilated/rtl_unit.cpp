@@ -2,8 +2,11 @@
 
 #include <array>
 
+#include <nlohmann/json.hpp>
+
 #include "model/error.hpp"
 #include "rtl/verilated/verilated_unit.hpp"
+#include "sim/params.hpp"
 
 #include "Vtess_n1.h"
 #include "Vtess_n2.h"
@@ -51,20 +54,15 @@ std::unique_ptr<RtlUnit> make_rtl_unit(const std::string& variant, std::uint64_t
 void check_config(const RtlUnit& unit, const sim::UnitConfig& cfg) {
   const sim::UnitConfig& rtl = unit.config();
   const std::string where = "RTL variant " + unit.variant();
-  auto require = [&](const char* key, long long have, long long want) {
+  // Every parameter that is a parameter of tess_unit (sim/params.cpp) must match the build.
+  for (const sim::ParamSpec& p : sim::unit_params()) {
+    if (!p.rtl) continue;
+    const nlohmann::json have = p.get(rtl), want = p.get(cfg);
     if (have != want) {
-      throw InputError(where, key, "the RTL is built with " + std::to_string(have) +
-                                       ", the configuration asks for " + std::to_string(want));
+      throw InputError(where, p.key, "the RTL is built with " + have.dump() + ", the configuration asks for " +
+                                         want.dump());
     }
-  };
-  require("coord_int_bits", rtl.format.coord_int_bits, cfg.format.coord_int_bits);
-  require("coord_frac_bits", rtl.format.coord_frac_bits, cfg.format.coord_frac_bits);
-  require("bary_bits", rtl.format.bary_bits, cfg.format.bary_bits);
-  require("int_blocks", rtl.int_blocks, cfg.int_blocks);
-  require("int_latency", rtl.int_latency, cfg.int_latency);
-  require("te_contexts", rtl.te_contexts, cfg.te_contexts);
-  require("tri_fifo_depth", rtl.tri_fifo_depth, cfg.tri_fifo_depth);
-  require("vtx_fifo_depth", rtl.vtx_fifo_depth, cfg.vtx_fifo_depth);
+  }
   if (cfg.cpg_mapping != sim::CpgMapping::Dedicated) {
     throw InputError(where, "cpg_mapping", "the RTL implements the dedicated CPG only");
   }

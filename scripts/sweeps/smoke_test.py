@@ -131,7 +131,7 @@ def main():
         if len(read_csv(tmp / "p1.csv")) != 2 or len(read_csv(tmp / "p2.csv")) != 2:
             fail("shards do not hold 2 rows each")
         subprocess.run([sys.executable, str(SWEEP), "merge", str(tmp / "p1.csv"), str(tmp / "p2.csv"),
-                        "-o", str(tmp / "merged.csv")], check=True, capture_output=True)
+                        "-o", str(tmp / "merged.csv"), "--tessim", tessim], check=True, capture_output=True)
         merged = [(r["key"], r["cycles"]) for r in read_csv(tmp / "merged.csv")]
         if merged != [(r["key"], r["cycles"]) for r in read_csv(out)]:
             fail("merged shards differ from the unsharded run")

@@ -169,7 +169,7 @@ void register_render(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render the PN tessellation of a mesh to PNG or EXR");
   cmd->add_option("mesh", args->mesh, "Input mesh (OBJ, PLY, STL, OFF, ... via Assimp)")->required();
-  cmd->add_option("-L,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")
+  cmd->add_option("-L,--tess-factor,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")
       ->capture_default_str();
   cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
       ->capture_default_str();

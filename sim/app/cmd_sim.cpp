@@ -1,10 +1,8 @@
 // tessim sim: a whole mesh through the cycle model of the unit and its geometry engine;
 // statistics, a human summary, a Perfetto trace, the issue schedule, the tessellated mesh.
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +12,7 @@
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"
 #include "sim/app/commands.hpp"
+#include "sim/app/config_flags.hpp"
 #include "sim/config.hpp"
 #include "sim/simulate.hpp"
 #include "sim/trace.hpp"
@@ -26,16 +25,6 @@ constexpr const char* kDefaultMesh = "/usr/share/assimp/models/PLY/Wuson.ply";
 
 struct SimArgs {
   std::string mesh = kDefaultMesh;
-  std::string config;
-  int tess_factor = 0;
-  int int_blocks = 0;
-  int int_latency = 0;
-  int contexts = 0;
-  int gpe_cycles = 0;
-  double stall = 0.0;
-  std::uint64_t seed = 0;
-  std::string cpg;
-  std::string normals;
   std::string stats;
   std::string trace;
   std::uint64_t trace_cycles = 20000;
@@ -43,58 +32,8 @@ struct SimArgs {
   bool schedule = false;
 };
 
-// Options given on the command line, as a JSON object of configuration keys: they go through
-// the same apply_json as a config file, so a bad value is reported the same way, key named.
-struct FlagOptions {
-  CLI::Option* tess_factor = nullptr;
-  CLI::Option* int_blocks = nullptr;
-  CLI::Option* int_latency = nullptr;
-  CLI::Option* contexts = nullptr;
-  CLI::Option* gpe_cycles = nullptr;
-  CLI::Option* stall = nullptr;
-  CLI::Option* seed = nullptr;
-  CLI::Option* cpg = nullptr;
-  CLI::Option* normals = nullptr;
-};
-
-nlohmann::json flag_overrides(const SimArgs& a, const FlagOptions& f) {
-  nlohmann::json j = nlohmann::json::object();
-  if (f.tess_factor->count()) j["tess_factor"] = a.tess_factor;
-  if (f.int_blocks->count()) j["int_blocks"] = a.int_blocks;
-  if (f.int_latency->count()) j["int_latency"] = a.int_latency;
-  if (f.contexts->count()) j["te_contexts"] = a.contexts;
-  if (f.gpe_cycles->count()) j["gpe_cycles"] = a.gpe_cycles;
-  if (f.stall->count()) j["gpe_stall_prob"] = a.stall;
-  if (f.seed->count()) j["seed"] = a.seed;
-  if (f.cpg->count()) j["cpg_mapping"] = a.cpg;
-  if (f.normals->count()) j["normals"] = a.normals;
-  return j;
-}
-
-sim::UnitConfig build_config(const SimArgs& a, const FlagOptions& f) {
-  sim::UnitConfig cfg;
-  std::string source = "command line";
-  if (!a.config.empty()) {
-    std::ifstream in(a.config);
-    if (!in) throw InputError(a.config, "file", "cannot open");
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(a.config, "JSON", e.what());
-    }
-    sim::apply_json(cfg, j, a.config);
-    source = a.config;
-  }
-  const nlohmann::json flags = flag_overrides(a, f);
-  sim::apply_json(cfg, flags, "command line");
-  if (!flags.empty() && !a.config.empty()) source = a.config + " with command-line overrides";
-  cfg.validate(source);
-  return cfg;
-}
-
-void run_sim(const SimArgs& a, const FlagOptions& f) {
-  const sim::UnitConfig cfg = build_config(a, f);
+void run_sim(const SimArgs& a, const ConfigFlags& flags) {
+  const sim::UnitConfig cfg = flags.config();
   if (!a.output.empty() && !is_supported_output(a.output))
     throw InputError(a.output, "output", "unsupported extension (use .ply or .obj)");
   if (a.trace_cycles == 0) throw InputError("command line", "--trace-cycles", "must be at least 1");
@@ -147,20 +86,10 @@ void run_sim(const SimArgs& a, const FlagOptions& f) {
 
 void register_sim(CLI::App& app) {
   auto args = std::make_shared<SimArgs>();
-  auto flags = std::make_shared<FlagOptions>();
   CLI::App* sub = app.add_subcommand(
       "sim", "Run a mesh through the cycle-level model of the unit and its geometry engine");
   sub->add_option("mesh", args->mesh, "input mesh (OBJ, PLY, STL, OFF, ...)")->capture_default_str();
-  sub->add_option("--config", args->config, "JSON configuration (keys: docs/microarchitecture.md §1, sim/config.hpp)");
-  flags->tess_factor = sub->add_option("-L,--tess-factor", args->tess_factor, "segments per edge (1..64)");
-  flags->int_blocks = sub->add_option("--int", args->int_blocks, "INT blocks N");
-  flags->int_latency = sub->add_option("--int-latency", args->int_latency, "INT latency in cycles");
-  flags->contexts = sub->add_option("--contexts", args->contexts, "TE vertex contexts V");
-  flags->gpe_cycles = sub->add_option("--gpe-cycles", args->gpe_cycles, "GPE cycles per vertex K");
-  flags->stall = sub->add_option("--stall", args->stall, "GPE random stall probability");
-  flags->seed = sub->add_option("--seed", args->seed, "seed of the GPE stalls");
-  flags->cpg = sub->add_option("--cpg", args->cpg, "CPG mapping: dedicated or gpe");
-  flags->normals = sub->add_option("--normals", args->normals, "normal mode: quadratic, reflect or linear");
+  auto flags = std::make_shared<ConfigFlags>(*sub);  // --config and every parameter (sim/params.hpp)
   sub->add_option("--stats", args->stats, "write the statistics as JSON");
   sub->add_option("--trace", args->trace, "write a Chrome/Perfetto trace (JSON)");
   sub->add_option("--trace-cycles", args->trace_cycles, "cycles recorded in the trace")->capture_default_str();

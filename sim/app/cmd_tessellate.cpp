@@ -64,7 +64,7 @@ void register_tessellate(CLI::App& app) {
   auto args = std::make_shared<TessellateArgs>();
   CLI::App* cmd = app.add_subcommand("tessellate", "Tessellate a mesh with the float64 PN reference into PLY or OBJ");
   cmd->add_option("mesh", args->mesh, "Input mesh (OBJ, PLY, STL, OFF, ... via Assimp)")->required();
-  cmd->add_option("-L,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")->capture_default_str();
+  cmd->add_option("-L,--tess-factor,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")->capture_default_str();
   cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output mesh: .ply (binary, double precision) or .obj")->required();

@@ -12,6 +12,7 @@ void register_tessellate(CLI::App& app);
 void register_render(CLI::App& app);
 void register_sim(CLI::App& app);
 void register_bench(CLI::App& app);
+void register_schema(CLI::App& app);
 #ifdef TESSIM_HAVE_COSIM
 void register_cosim(CLI::App& app);
 void register_rtlbench(CLI::App& app);

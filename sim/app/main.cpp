@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   tessim::app::register_render(app);
   tessim::app::register_sim(app);
   tessim::app::register_bench(app);
+  tessim::app::register_schema(app);
 #ifdef TESSIM_HAVE_COSIM
   tessim::app::register_cosim(app);
   tessim::app::register_rtlbench(app);

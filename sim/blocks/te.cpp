@@ -16,14 +16,15 @@ const char* to_string(TeClass c) {
 Te::Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const NumberFormat& format)
     : n_contexts_(contexts),
       bary_bits_(format.bary_bits),
-      ops_(int_ops_for(normals)),
-      all_ops_((std::uint32_t{1} << kIntOpsPerVertex) - 1),
-      absent_ops_(absent_ops(normals)),
-      normal_op_(normal_op(normals)),
+      all_ops_((std::uint32_t{1} << int_ops::kOpCount) - 1),
+      absent_ops_(int_ops::absent_ops(normals)),
+      normal_op_(int_ops::normal_op(normals)),
       contexts_(static_cast<std::size_t>(contexts)),
       dpg_(format),
       ints_(int_blocks, int_latency),
-      issued_(static_cast<std::size_t>(int_blocks)) {}
+      issued_(static_cast<std::size_t>(int_blocks)) {
+  for (int op = 0; op < int_ops::kOpCount; ++op) operands_[static_cast<std::size_t>(op)] = int_ops::operands(op, normals);
+}
 
 void Te::reset() {
   for (Context& c : contexts_) c.issued = c.done = c.ready = 0;

@@ -78,7 +78,7 @@ class Te {
 
  private:
   struct Context {
-    std::array<FxVec, kIntOpsPerVertex> t{};  // temporaries T0..T13
+    std::array<FxVec, int_ops::kOpCount> t{};  // temporaries T0..T13
     std::int64_t w = 0, u = 0, v = 0;
     std::uint32_t issued = 0, done = 0;  // bit o: op o issued / result written
     // Ops not issued whose dependences are all done: dependences_met(done) & ~issued, kept up to
@@ -95,7 +95,7 @@ class Te {
   // Ops whose dependences are all done (issued or not): the table's masks, expanded at compile
   // time into one test per dependent op (this runs for every context every cycle).
   static std::uint32_t dependences_met(std::uint32_t done) {
-    return dependences_met(done, std::make_index_sequence<kIntOpsPerVertex>{});
+    return dependences_met(done, std::make_index_sequence<int_ops::kOpCount>{});
   }
   template <std::size_t... Op>
   static std::uint32_t dependences_met(std::uint32_t done, std::index_sequence<Op...>) {
@@ -103,7 +103,7 @@ class Te {
   }
   template <std::size_t Op>
   static std::uint32_t op_ready(std::uint32_t done) {
-    constexpr std::uint32_t deps = kIntOps[Op].depends_on;
+    constexpr std::uint32_t deps = int_ops::kIntOps[Op].depends;
     if constexpr (deps == 0) return std::uint32_t{1} << Op;
     else return std::uint32_t{(done & deps) == deps} << Op;
   }
@@ -111,10 +111,10 @@ class Te {
   void issue(const ControlPointBuffer& buffers, Context& ctx, int context_slot, int op, int block) {
     const ControlPointBuffer::Entry& buf = buffers.entry(ctx.buffer);
     const FxVec* base[3] = {buf.cp.b.data(), buf.cp.n.data(), ctx.t.data()};
-    const auto& src = ops_[static_cast<std::size_t>(op)].operands;
+    const auto& src = operands_[static_cast<std::size_t>(op)];
     auto operand = [&](int i) -> const FxVec& {
-      const IntOperand& o = src[static_cast<std::size_t>(i)];
-      return base[static_cast<int>(o.space)][o.index];
+      const int_ops::Operand& o = src[static_cast<std::size_t>(i)];
+      return base[static_cast<int>(o.net)][o.index];  // Net::B, N, T: the order of `base`
     };
     ctx.t[static_cast<std::size_t>(op)] = int_op(ctx.w, ctx.u, ctx.v, operand(0), operand(1), operand(2), bary_bits_);
     ctx.issued |= std::uint32_t{1} << op;
@@ -124,7 +124,7 @@ class Te {
 
   int n_contexts_;
   int bary_bits_;
-  std::array<IntOpInfo, kIntOpsPerVertex> ops_;
+  std::array<std::array<int_ops::Operand, 3>, int_ops::kOpCount> operands_;  // of this normal mode
   std::uint32_t all_ops_;     // done mask of a finished vertex
   std::uint32_t absent_ops_;  // ops that do not exist in this mode (linear: 7, 8, 12)
   int normal_op_;             // temporary holding the output normal
@@ -146,7 +146,7 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
   if (retire_into) {
     const Context& h = contexts_[static_cast<std::size_t>(head_)];
     VertexFx& out = *retire_into;
-    out.pos = h.t[kPositionOp];
+    out.pos = h.t[int_ops::kPositionOp];
     out.nrm = h.t[static_cast<std::size_t>(normal_op_)];
     out.u = h.u;
     out.v = h.v;

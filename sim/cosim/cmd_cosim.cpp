@@ -1,13 +1,17 @@
 // tessim cosim: lock-step co-simulation of the Verilated RTL against the cycle model.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/app/commands.hpp"
+#include "sim/app/config_flags.hpp"
 #include "sim/config.hpp"
 #include "sim/cosim/cosim.hpp"
 #include "sim/host.hpp"
@@ -20,13 +24,6 @@ struct CosimArgs {
   std::string mesh = "/usr/share/assimp/models/PLY/Wuson.ply";
   std::size_t random_count = 0;
   int random_max_L = 8;
-  std::string config_file;
-  int int_blocks = 2;
-  int tess_factor = 0;
-  int gpe_cycles = 0;
-  double stall = -1;
-  std::string normals;
-  std::uint64_t seed = 1;
   int seeds = 1;
   std::string variant;
   bool verif = false;
@@ -34,19 +31,39 @@ struct CosimArgs {
   int wave_window = 200;
 };
 
-int run(const CosimArgs& a, const CLI::App& cmd) {
-  sim::UnitConfig cfg;
-  if (!a.config_file.empty()) cfg = sim::load_config(a.config_file);
-  cfg.int_blocks = a.int_blocks;
-  if (cmd.count("-L")) cfg.tess_factor = a.tess_factor;
-  if (cmd.count("--gpe-cycles")) cfg.gpe_cycles = a.gpe_cycles;
-  if (cmd.count("--stall")) cfg.gpe_stall_prob = a.stall;
-  if (!a.normals.empty()) {
-    const auto m = parse_normal_mode(a.normals);
-    if (!m) throw InputError("--normals", a.normals, "not one of quadratic, reflect, linear, derivative");
-    cfg.normals = *m;
+std::string known_builds() {
+  std::string known;
+  for (const std::string& v : rtl::rtl_variants()) known += (known.empty() ? "" : ", ") + v;
+  return known;
+}
+
+// The RTL build to run: --variant, else nN (nN_verif) for the configuration's int_blocks.
+// A build that does not exist is bad input, named with the builds that do (docs/rtl.md).
+std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const sim::UnitConfig& cfg) {
+  const std::vector<std::string> builds = rtl::rtl_variants();
+  auto exists = [&](const std::string& v) { return std::find(builds.begin(), builds.end(), v) != builds.end(); };
+  if (!a.variant.empty()) {
+    if (!exists(a.variant))
+      throw InputError("command line", "--variant",
+                       "no RTL build '" + a.variant + "'; the RTL builds are " + known_builds());
+    return a.variant;
   }
-  cfg.validate("command line");
+  const std::string v = "n" + std::to_string(cfg.int_blocks) + (a.verif ? "_verif" : "");
+  if (!exists(v)) {
+    const std::string source = flags.config_file().empty() || flags.overrides().contains("int_blocks")
+                                   ? "command line"
+                                   : flags.config_file();
+    throw InputError(source, "int_blocks",
+                     "no RTL build " + v + " for int_blocks " + std::to_string(cfg.int_blocks) +
+                         (a.verif ? " with --verif" : "") + "; the RTL builds are " + known_builds() +
+                         " (nN: N INT blocks; docs/rtl.md adds one)");
+  }
+  return v;
+}
+
+int run(const CosimArgs& a, const ConfigFlags& flags) {
+  const sim::UnitConfig cfg = flags.config();  // defaults, --config, the flags given
+  const std::string variant = choose_variant(a, flags, cfg);
 
   std::vector<sim::TriangleFx> stream;
   std::string source;
@@ -65,13 +82,12 @@ int run(const CosimArgs& a, const CLI::App& cmd) {
 
   cosim::CosimOptions opts;
   opts.unit = cfg;
-  opts.variant = !a.variant.empty() ? a.variant
-                                    : "n" + std::to_string(cfg.int_blocks) + (a.verif ? "_verif" : "");
+  opts.variant = variant;
   opts.wave = a.wave;
   opts.wave_window = a.wave_window;
   int failures = 0;
   for (int s = 0; s < a.seeds; ++s) {
-    opts.seed = a.seed + static_cast<std::uint64_t>(s);
+    opts.seed = cfg.seed + static_cast<std::uint64_t>(s);
     opts.unit.seed = opts.seed;
     if (a.random_count > 0)
       stream = cosim::random_triangles(a.random_count, opts.seed, cfg.format, a.random_max_L);
@@ -94,20 +110,16 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("mesh", args->mesh, "Input mesh (default: Debian's assimp-testmodels Wuson.ply)");
   cmd->add_option("--random", args->random_count, "Use N random triangles (with degenerate ones) instead of a mesh");
   cmd->add_option("--random-max-L", args->random_max_L, "Largest factor of the random triangles (1..64)");
-  cmd->add_option("--config", args->config_file, "Unit configuration (JSON); flags override it");
-  cmd->add_option("--int", args->int_blocks, "INT blocks N (selects the RTL build nN)")->check(CLI::Range(1, 32));
-  cmd->add_option("-L", args->tess_factor, "Tessellation factor (segments per edge)");
-  cmd->add_option("--gpe-cycles", args->gpe_cycles, "Geometry engine: one vertex every K cycles");
-  cmd->add_option("--stall", args->stall, "Geometry engine: probability of a random stall per cycle");
-  cmd->add_option("--normals", args->normals, "quadratic | reflect | linear");
-  cmd->add_option("--seed", args->seed, "Seed of the backpressure and of the RTL's X randomisation");
+  // --config and every parameter of sim/params.hpp (--int-blocks/--int selects the RTL build nN;
+  // --seed also seeds the RTL's X randomisation).
+  auto flags = std::make_shared<ConfigFlags>(*cmd);
   cmd->add_option("--seeds", args->seeds, "Run this many consecutive seeds")->check(CLI::Range(1, 1000000));
   cmd->add_option("--variant", args->variant, "RTL build to use (see docs/rtl.md)");
   cmd->add_flag("--verif", args->verif, "Use the verification build (X randomised)");
   cmd->add_option("--wave", args->wave, "On divergence, write an FST waveform of the window before it");
   cmd->add_option("--wave-window", args->wave_window, "Cycles of waveform before the divergence")->check(CLI::Range(1, 10000000));
-  cmd->callback([args, cmd]() {
-    const int status = run(*args, *cmd);
+  cmd->callback([args, flags]() {
+    const int status = run(*args, *flags);
     if (status != 0) throw CLI::RuntimeError(status);
   });
 }

@@ -1,0 +1,262 @@
+#include "sim/params.hpp"
+
+#include <array>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "model/pattern.hpp"
+#include "sim/cpg.hpp"
+#include "sim/gpe.hpp"
+#include "sim/int_ops.hpp"
+#include "sim/unit.hpp"
+
+namespace tessim::sim {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr std::array<const char*, 4> kNormalChoices{"quadratic", "reflect", "linear", "derivative"};
+constexpr std::array<const char*, 2> kCpgChoices{"dedicated", "gpe"};
+
+// get/set of a plain field of UnitConfig (FIELD is an expression on `c`).
+#define TESSIM_PARAM_FIELD(FIELD)                                                  \
+  [](const UnitConfig& c) -> json { return c.FIELD; },                              \
+      [](UnitConfig& c, const json& v) { c.FIELD = v.get<decltype(c.FIELD)>(); }
+
+constexpr double kMaxCycles = 100000;
+constexpr auto H = ParamKind::Hardware;
+constexpr auto E = ParamKind::Environment;
+constexpr auto W = ParamKind::Workload;
+constexpr auto I = ParamType::Int;
+
+const std::array<ParamSpec, 15> kParams{{
+    {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
+     "tessellation factor: segments per edge, the same for every triangle of a run",
+     TESSIM_PARAM_FIELD(tess_factor)},
+    {"normals", "--normals", "", nullptr, "", W, ParamType::Enum, 0, 0, kNormalChoices, "",
+     "normal field; the unit implements quadratic, reflect and linear (derivative: float reference only)",
+     [](const UnitConfig& c) -> json { return std::string(to_string(c.normals)); },
+     [](UnitConfig& c, const json& v) { c.normals = *parse_normal_mode(v.get<std::string>()); }},
+    {"int_blocks", "--int-blocks", "--int", "IntBlocks", "N", H, I, 1, 32, {}, "blocks",
+     "INT blocks in the TE (each issues one w·A + u·B + v·C operation per cycle)",
+     TESSIM_PARAM_FIELD(int_blocks)},
+    {"int_latency", "--int-latency", "", "IntLatency", "Λ", H, I, 1, 8, {}, "cycles",
+     "INT latency: cycles from issue to a result visible to a dependent operation",
+     TESSIM_PARAM_FIELD(int_latency)},
+    {"te_contexts", "--te-contexts", "--contexts", "Contexts", "V", H, I, 1, 16, {}, "vertices",
+     "vertices the TE keeps in flight (temporary-register sets)", TESSIM_PARAM_FIELD(te_contexts)},
+    {"gpe_cycles", "--gpe-cycles", "", nullptr, "K", E, I, 1, kMaxCycles, {}, "cycles",
+     "the geometry engine accepts at most one vertex every K cycles", TESSIM_PARAM_FIELD(gpe_cycles)},
+    {"gpe_stall_prob", "--gpe-stall-prob", "--stall", nullptr, "", E, ParamType::Double, 0.0, 0.99, {}, "",
+     "probability that a ready geometry engine stalls a cycle anyway", TESSIM_PARAM_FIELD(gpe_stall_prob)},
+    {"seed", "--seed", "", nullptr, "", E, ParamType::UInt64, 0, 0, {}, "",
+     "seed of the geometry engine's random stalls (cosim: also of the RTL's X values)",
+     TESSIM_PARAM_FIELD(seed)},
+    {"cpg_mapping", "--cpg-mapping", "--cpg", nullptr, "", H, ParamType::Enum, 0, 0, kCpgChoices, "",
+     "CPG as its own sequential datapath (dedicated, the RTL's) or on the geometry engine's spare cycles",
+     [](const UnitConfig& c) -> json { return to_string(c.cpg_mapping); },
+     [](UnitConfig& c, const json& v) {
+       c.cpg_mapping = v.get<std::string>() == "gpe" ? CpgMapping::Gpe : CpgMapping::Dedicated;
+     }},
+    {"cpg_gpe_cycles", "--cpg-gpe-cycles", "", nullptr, "", E, I, 1, kMaxCycles, {}, "cycles",
+     "geometry-engine cycles the CPG needs per triangle when mapped there (cpg_mapping gpe)",
+     TESSIM_PARAM_FIELD(cpg_gpe_cycles)},
+    {"coord_int_bits", "--coord-int-bits", "", "CoordIntBits", "I", H, I, 1, 8, {}, "bits",
+     "integer bits of a coordinate, sign excluded (width W = 1 + I + F <= 32)",
+     TESSIM_PARAM_FIELD(format.coord_int_bits)},
+    {"coord_frac_bits", "--coord-frac-bits", "", "CoordFracBits", "F", H, I, 8, 26, {}, "bits",
+     "fraction bits of a coordinate", TESSIM_PARAM_FIELD(format.coord_frac_bits)},
+    // B >= 7 keeps every barycentric weight of L <= 64 away from rounding ties (fixed.hpp).
+    {"bary_bits", "--bary-bits", "", "BaryBits", "B", H, I, 7, 20, {}, "bits",
+     "fraction bits of a barycentric weight (weights are B + 1 bits)", TESSIM_PARAM_FIELD(format.bary_bits)},
+    {"tri_fifo_depth", "--tri-fifo-depth", "", "TriFifoDepth", "Dt", H, I, 1, 64, {}, "triangles",
+     "depth of the input triangle FIFO in front of the CPG", TESSIM_PARAM_FIELD(tri_fifo_depth)},
+    {"vtx_fifo_depth", "--vtx-fifo-depth", "", "VtxFifoDepth", "Dv", H, I, 1, 64, {}, "vertices",
+     "depth of the output vertex FIFO between the TE and the geometry engine",
+     TESSIM_PARAM_FIELD(vtx_fifo_depth)},
+}};
+
+#undef TESSIM_PARAM_FIELD
+
+std::string number_text(double x) {
+  return x == static_cast<double>(static_cast<long long>(x)) ? std::to_string(static_cast<long long>(x))
+                                                             : json(x).dump();
+}
+
+json range_json(const ParamSpec& p, bool lo) {
+  switch (p.type) {
+    case ParamType::Int: return static_cast<long long>(lo ? p.min : p.max);
+    case ParamType::Double: return lo ? p.min : p.max;
+    case ParamType::UInt64: return lo ? std::uint64_t{0} : std::numeric_limits<std::uint64_t>::max();
+    case ParamType::Enum: break;
+  }
+  return nullptr;
+}
+
+
+}  // namespace
+
+const char* to_string(ParamKind k) {
+  switch (k) {
+    case ParamKind::Hardware: return "hardware";
+    case ParamKind::Environment: return "environment";
+    case ParamKind::Workload: return "workload";
+  }
+  return "?";
+}
+
+const char* to_string(ParamType t) {
+  switch (t) {
+    case ParamType::Int: return "int";
+    case ParamType::UInt64: return "uint64";
+    case ParamType::Double: return "double";
+    case ParamType::Enum: return "enum";
+  }
+  return "?";
+}
+
+std::span<const ParamSpec> unit_params() { return kParams; }
+
+const ParamSpec* find_param(std::string_view key) {
+  for (const ParamSpec& p : kParams) {
+    if (key == p.key) return &p;
+  }
+  return nullptr;
+}
+
+std::string range_text(const ParamSpec& p) {
+  switch (p.type) {
+    case ParamType::Int:
+    case ParamType::Double: return number_text(p.min) + ".." + number_text(p.max);
+    case ParamType::UInt64: return "0..2^64-1";
+    case ParamType::Enum: {
+      std::string s;
+      for (const char* c : p.choices) s += (s.empty() ? "" : ", ") + std::string(c);
+      return s;
+    }
+  }
+  return "";
+}
+
+std::vector<std::string> alias_list(const ParamSpec& p) {
+  std::vector<std::string> list;
+  for (std::string_view rest = p.aliases; !rest.empty();) {
+    const auto comma = rest.find(',');
+    list.emplace_back(rest.substr(0, comma));
+    rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+  }
+  return list;
+}
+
+std::string cli_names(const ParamSpec& p) {
+  std::string names = p.flag;
+  if (*p.aliases) names += std::string(",") + p.aliases;
+  return names;
+}
+
+nlohmann::json schema_json() {
+  const UnitConfig defaults{};
+  json params = json::array();
+  json rtl = json::object();
+  for (const ParamSpec& p : kParams) {
+    json aliases = alias_list(p);
+    json e = {
+        {"key", p.key},
+        {"flag", p.flag},
+        {"aliases", aliases},
+        {"rtl", p.rtl ? json(p.rtl) : json(nullptr)},
+        {"symbol", p.symbol},
+        {"kind", to_string(p.kind)},
+        {"type", to_string(p.type)},
+        {"default", p.get(defaults)},
+        {"unit", p.unit},
+        {"description", p.description},
+    };
+    if (p.type == ParamType::Enum) {
+      e["choices"] = json::array();
+      for (const char* c : p.choices) e["choices"].push_back(c);
+    } else {
+      e["minimum"] = range_json(p, true);
+      e["maximum"] = range_json(p, false);
+    }
+    params.push_back(e);
+    if (p.rtl) rtl[p.rtl] = p.key;
+  }
+
+  // The INT operations (sim/int_ops.hpp).
+  json ops = json::array();
+  auto operands_json = [](const std::array<int_ops::Operand, 3>& src) {
+    json a = json::array();
+    for (const int_ops::Operand& o : src) {
+      std::string name = int_ops::to_string(o.net);
+      name += std::to_string(o.index);
+      a.push_back(name);
+    }
+    return a;
+  };
+  for (const int_ops::IntOp& op : int_ops::kIntOps) {
+    json deps = json::array();
+    for (int d = 0; d < int_ops::kOpCount; ++d) {
+      if (op.depends & int_ops::bit(d)) deps.push_back(d);
+    }
+    json modes = json::array();
+    for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+      if (!(int_ops::absent_ops(m) & int_ops::bit(op.op))) modes.push_back(std::string(to_string(m)));
+    }
+    json e = {{"op", op.op}, {"level", op.level}, {"what", op.what}, {"operands", operands_json(op.operands)},
+              {"depends_on", deps}, {"modes", modes}};
+    if (op.op == int_ops::kLinearNormalOp) e["operands_linear"] = operands_json(int_ops::kLinearNormalOperands);
+    ops.push_back(e);
+  }
+  json per_mode = json::object();
+  for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+    per_mode[std::string(to_string(m))] = {{"ops_per_vertex", int_ops::ops_per_vertex(m)},
+                                           {"position_op", int_ops::kPositionOp},
+                                           {"normal_op", int_ops::normal_op(m)}};
+  }
+
+  // Statistics counters: per run, then the classes of each block (each class set sums to cycles).
+  json te = json::array(), cpg = json::array(), gpe = json::array();
+  for (auto c : {TeClass::Busy, TeClass::BlockedByGpe, TeClass::StarvedByCpg, TeClass::Idle, TeClass::Pipeline})
+    te.push_back(to_string(c));
+  for (auto c : {CpgClass::Busy, CpgClass::Blocked, CpgClass::WaitGpe, CpgClass::Idle}) cpg.push_back(to_string(c));
+  for (auto c : {GpeClass::Busy, GpeClass::Stalled, GpeClass::Cpg, GpeClass::Starved}) gpe.push_back(to_string(c));
+  json stats = {
+      {"per_run", {"cycles", "triangles_in", "vertices_out"}},
+      {"classes", {{"int_block", {"busy", "idle"}}, {"te", te}, {"cpg", cpg}, {"gpe", gpe}}},
+      {"doc", "docs/microarchitecture.md §10, docs/statistics.md"},
+  };
+
+  // Cycles of the dedicated CPG per triangle (sim::cpg_cycles), for every valid coordinate
+  // format; they do not depend on bary_bits (tests/params_test.cpp checks it).
+  const ParamSpec& ib = *find_param("coord_int_bits");
+  const ParamSpec& fb = *find_param("coord_frac_bits");
+  json cpg_cycles_json = json::object();
+  for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+    json rows = json::array();
+    for (int i = static_cast<int>(ib.min); i <= static_cast<int>(ib.max); ++i) {
+      for (int f = static_cast<int>(fb.min); f <= static_cast<int>(fb.max); ++f) {
+        NumberFormat fmt = defaults.format;
+        fmt.coord_int_bits = i;
+        fmt.coord_frac_bits = f;
+        if (fmt.coord_width() > 32) continue;
+        rows.push_back({{"coord_int_bits", i}, {"coord_frac_bits", f}, {"cycles", cpg_cycles(m, fmt)}});
+      }
+    }
+    cpg_cycles_json[std::string(to_string(m))] = rows;
+  }
+
+  return {
+      {"tessim_schema", 1},
+      {"parameters", params},
+      {"rtl_parameters", rtl},
+      {"int_ops", ops},
+      {"int_ops_per_mode", per_mode},
+      {"statistics", stats},
+      {"cpg_cycles", cpg_cycles_json},
+  };
+}
+
+}  // namespace tessim::sim
