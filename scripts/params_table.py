@@ -3,7 +3,7 @@
 
     params_table.py [--tessim PATH]
 
-tests/params_test.cpp checks that README.md lists every parameter with its flags, default and
+tests/sim/params_test.cpp checks that README.md lists every parameter with its flags, default and
 range; rerun this and paste its output when a parameter changes.
 """
 

@@ -230,7 +230,7 @@ nlohmann::json schema_json() {
   };
 
   // Cycles of the dedicated CPG per triangle (sim::cpg_cycles), for every valid coordinate
-  // format; they do not depend on bary_bits (tests/params_test.cpp checks it).
+  // format; they do not depend on bary_bits (tests/sim/params_test.cpp checks it).
   const ParamSpec& ib = *find_param("coord_int_bits");
   const ParamSpec& fb = *find_param("coord_frac_bits");
   json cpg_cycles_json = json::object();

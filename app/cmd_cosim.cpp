@@ -1,0 +1,127 @@
+// tessim cosim: lock-step co-simulation of the Verilated RTL against the cycle model.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "model/error.hpp"
+#include "model/mesh_io.hpp"
+#include "model/pattern.hpp"
+#include "rtl/verilated/rtl_unit.hpp"
+#include "app/commands.hpp"
+#include "app/config_flags.hpp"
+#include "sim/config.hpp"
+#include "cosim/cosim.hpp"
+#include "sim/host.hpp"
+
+namespace tessim::app {
+
+namespace {
+
+struct CosimArgs {
+  std::string mesh = "/usr/share/assimp/models/PLY/Wuson.ply";
+  std::size_t random_count = 0;
+  int random_max_L = 8;
+  int seeds = 1;
+  std::string variant;
+  bool verif = false;
+  std::string wave;
+  int wave_window = 200;
+};
+
+std::string known_builds() {
+  std::string known;
+  for (const std::string& v : rtl::rtl_variants()) known += (known.empty() ? "" : ", ") + v;
+  return known;
+}
+
+// The RTL build to run: --variant, else nN (nN_verif) for the configuration's int_blocks.
+// A build that does not exist is bad input, named with the builds that do (docs/rtl.md).
+std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const sim::UnitConfig& cfg) {
+  const std::vector<std::string> builds = rtl::rtl_variants();
+  auto exists = [&](const std::string& v) { return std::find(builds.begin(), builds.end(), v) != builds.end(); };
+  if (!a.variant.empty()) {
+    if (!exists(a.variant))
+      throw InputError("command line", "--variant",
+                       "no RTL build '" + a.variant + "'; the RTL builds are " + known_builds());
+    return a.variant;
+  }
+  const std::string v = "n" + std::to_string(cfg.int_blocks) + (a.verif ? "_verif" : "");
+  if (!exists(v)) {
+    const std::string source = flags.config_file().empty() || flags.overrides().contains("int_blocks")
+                                   ? "command line"
+                                   : flags.config_file();
+    throw InputError(source, "int_blocks",
+                     "no RTL build " + v + " for int_blocks " + std::to_string(cfg.int_blocks) +
+                         (a.verif ? " with --verif" : "") + "; the RTL builds are " + known_builds() +
+                         " (nN: N INT blocks; docs/rtl.md adds one)");
+  }
+  return v;
+}
+
+int run(const CosimArgs& a, const ConfigFlags& flags) {
+  const sim::UnitConfig cfg = flags.config();  // defaults, --config, the flags given
+  const std::string variant = choose_variant(a, flags, cfg);
+
+  std::vector<sim::TriangleFx> stream;
+  std::string source;
+  if (a.random_count > 0) {
+    if (a.random_max_L < 1 || a.random_max_L > kMaxTessFactor)
+      throw InputError("--random-max-L", std::to_string(a.random_max_L), "must be in 1..64");
+    source = std::to_string(a.random_count) + " random triangles";
+  } else {
+    const Mesh mesh = load_mesh(a.mesh);
+    const sim::HostScaling scaling = sim::host_scaling(mesh);
+    stream.reserve(mesh.triangle_count());
+    for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
+      stream.push_back(sim::to_fixed(mesh, i, scaling, cfg.format, cfg.tess_factor));
+    source = a.mesh;
+  }
+
+  cosim::CosimOptions opts;
+  opts.unit = cfg;
+  opts.variant = variant;
+  opts.wave = a.wave;
+  opts.wave_window = a.wave_window;
+  int failures = 0;
+  for (int s = 0; s < a.seeds; ++s) {
+    opts.seed = cfg.seed + static_cast<std::uint64_t>(s);
+    opts.unit.seed = opts.seed;
+    if (a.random_count > 0)
+      stream = cosim::random_triangles(a.random_count, opts.seed, cfg.format, a.random_max_L);
+    std::cout << "stream: " << source << "\n";
+    const cosim::CosimReport rep = cosim::run_cosim(stream, opts);
+    std::cout << cosim::format_report(rep, opts) << std::flush;
+    if (!rep.passed) {
+      ++failures;
+      break;  // the first failing seed is the one to debug
+    }
+  }
+  return failures == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+void register_cosim(CLI::App& app) {
+  auto args = std::make_shared<CosimArgs>();
+  CLI::App* cmd = app.add_subcommand("cosim", "Lock-step co-simulation of the Verilated RTL against the cycle model");
+  cmd->add_option("mesh", args->mesh, "Input mesh (default: Debian's assimp-testmodels Wuson.ply)");
+  cmd->add_option("--random", args->random_count, "Use N random triangles (with degenerate ones) instead of a mesh");
+  cmd->add_option("--random-max-L", args->random_max_L, "Largest factor of the random triangles (1..64)");
+  // --config and every parameter of sim/params.hpp (--int-blocks/--int selects the RTL build nN;
+  // --seed also seeds the RTL's X randomisation).
+  auto flags = std::make_shared<ConfigFlags>(*cmd);
+  cmd->add_option("--seeds", args->seeds, "Run this many consecutive seeds")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--variant", args->variant, "RTL build to use (see docs/rtl.md)");
+  cmd->add_flag("--verif", args->verif, "Use the verification build (X randomised)");
+  cmd->add_option("--wave", args->wave, "On divergence, write an FST waveform of the window before it");
+  cmd->add_option("--wave-window", args->wave_window, "Cycles of waveform before the divergence")->check(CLI::Range(1, 10000000));
+  cmd->callback([args, flags]() {
+    const int status = run(*args, *flags);
+    if (status != 0) throw CLI::RuntimeError(status);
+  });
+}
+
+}  // namespace tessim::app

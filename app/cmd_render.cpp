@@ -1,0 +1,192 @@
+// tessim render: pictures of a PN tessellation, optionally next to the flat-shaded input mesh.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/error.hpp"
+#include "model/mesh.hpp"
+#include "model/mesh_io.hpp"
+#include "model/normal_mode.hpp"
+#include "model/pattern.hpp"
+#include "model/tessellate.hpp"
+#include "app/commands.hpp"
+#include "render/raster.hpp"
+
+namespace tessim::app {
+
+namespace {
+
+// Rendering keeps every tessellated triangle in memory (~80 bytes each with its share of
+// vertices and the projection): refuse beyond this instead of exhausting memory.
+constexpr std::uint64_t kMaxRenderedTriangles = std::uint64_t{1} << 24;
+
+struct RenderArgs {
+  std::string mesh;
+  int factor = 4;
+  std::string normals = "quadratic";
+  std::string compare;
+  bool wireframe = false;
+  std::string size = "1024x768";
+  double azimuth = ViewAngles{}.azimuth_deg;
+  double elevation = ViewAngles{}.elevation_deg;
+  std::string up = "y";
+  bool no_supersample = false;
+  std::string output;
+};
+
+// The input mesh with one face normal per triangle: the faceted look of the coarse mesh.
+RenderMesh flat_shaded(const Mesh& mesh) {
+  RenderMesh out;
+  out.positions.reserve(mesh.triangles.size() * 3);
+  out.normals.reserve(mesh.triangles.size() * 3);
+  out.triangles.reserve(mesh.triangles.size());
+  for (const glm::uvec3& tri : mesh.triangles) {
+    const glm::dvec3 a = mesh.positions[tri.x], b = mesh.positions[tri.y], c = mesh.positions[tri.z];
+    glm::dvec3 n = glm::cross(b - a, c - a);
+    // A zero-area triangle has no face normal; it covers no pixels either, any unit vector does.
+    n = glm::length(n) > 0.0 ? glm::normalize(n) : glm::dvec3(0.0, 0.0, 1.0);
+    const auto base = static_cast<unsigned>(out.positions.size());
+    for (const glm::dvec3& p : {a, b, c}) {
+      out.positions.push_back(p);
+      out.normals.push_back(n);
+    }
+    out.triangles.emplace_back(base, base + 1, base + 2);
+  }
+  return out;
+}
+
+// The PN tessellation of every input triangle, patch boundaries flagged as primary edges so
+// that the wireframe shows the input triangles darker than the refinement inside them.
+RenderMesh pn_tessellated(const Mesh& mesh, int L, NormalMode mode) {
+  const std::vector<glm::uvec3> local = pattern_triangles(L);
+  const std::vector<DomainPoint> points = pattern_points(L);
+  auto on_same_side = [&](unsigned a, unsigned b) {
+    const DomainPoint p = points[a], q = points[b];
+    return (p.j == 0 && q.j == 0) || (p.k == 0 && q.k == 0) || (p.j + p.k == L && q.j + q.k == L);
+  };
+  std::vector<std::uint8_t> local_flags;
+  for (const glm::uvec3& t : local) {
+    std::uint8_t flags = 0;
+    for (int e = 0; e < 3; ++e)
+      if (on_same_side(t[e], t[(e + 1) % 3])) flags |= static_cast<std::uint8_t>(1u << e);
+    local_flags.push_back(flags);
+  }
+
+  RenderMesh out;
+  const std::size_t patches = mesh.triangles.size();
+  out.positions.reserve(patches * points.size());
+  out.normals.reserve(patches * points.size());
+  out.triangles.reserve(patches * local.size());
+  out.edge_flags.reserve(patches * local.size());
+  tessellate_mesh(mesh, L, mode, [&](const PatchView& patch) {
+    const auto base = static_cast<unsigned>(out.positions.size());
+    out.positions.insert(out.positions.end(), patch.positions.begin(), patch.positions.end());
+    out.normals.insert(out.normals.end(), patch.normals.begin(), patch.normals.end());
+    for (const glm::uvec3& t : local) out.triangles.push_back(t + glm::uvec3(base));
+    out.edge_flags.insert(out.edge_flags.end(), local_flags.begin(), local_flags.end());
+  });
+  return out;
+}
+
+void run_render(const RenderArgs& args) {
+  // Validate everything before loading or computing anything.
+  const glm::ivec2 size = parse_image_size(args.size, "--size");
+  if (args.factor < 1 || args.factor > kMaxTessFactor)
+    throw InputError("render", "-L", std::to_string(args.factor) + " is outside 1.." + std::to_string(kMaxTessFactor));
+  const auto mode = parse_normal_mode(args.normals);
+  if (!mode)
+    throw InputError("render", "--normals",
+                     "'" + args.normals + "' is not one of quadratic, reflect, linear, derivative");
+  const bool compare = !args.compare.empty();
+  if (compare && args.compare != "flat")
+    throw InputError("render", "--compare", "'" + args.compare + "' is not supported (only 'flat')");
+  ViewAngles view;
+  view.azimuth_deg = args.azimuth;
+  view.elevation_deg = args.elevation;
+  if (args.up == "y" || args.up == "Y") view.up = UpAxis::Y;
+  else if (args.up == "z" || args.up == "Z") view.up = UpAxis::Z;
+  else throw InputError("render", "--up", "'" + args.up + "' is not one of y, z");
+  if (!std::isfinite(view.azimuth_deg)) throw InputError("render", "--azimuth", "not a finite angle");
+  if (!std::isfinite(view.elevation_deg) || std::abs(view.elevation_deg) > 90.0)
+    throw InputError("render", "--elevation", "must be within -90..90 degrees");
+  const std::filesystem::path output = args.output;
+  if (!is_supported_image(output))
+    throw InputError(output.string(), "output",
+                     "unsupported image format '" + output.extension().string() + "' (use .png or .exr)");
+
+  const Mesh mesh = load_mesh(args.mesh);
+  const std::uint64_t rendered = static_cast<std::uint64_t>(mesh.triangles.size()) * args.factor * args.factor;
+  if (rendered > kMaxRenderedTriangles)
+    throw InputError(args.mesh, "-L", std::to_string(rendered) + " tessellated triangles exceed the renderer's limit of " +
+                                          std::to_string(kMaxRenderedTriangles) + "; lower -L");
+
+  std::vector<RenderMesh> panels;
+  if (compare) panels.push_back(flat_shaded(mesh));
+  panels.push_back(pn_tessellated(mesh, args.factor, *mode));
+
+  // One camera for all panels, framed on everything drawn (the PN surface bulges beyond the
+  // input vertices).
+  std::vector<glm::dvec3> all_points;
+  for (const RenderMesh& panel : panels) {
+    validate(panel, mesh.source.empty() ? args.mesh : mesh.source);
+    all_points.insert(all_points.end(), panel.positions.begin(), panel.positions.end());
+  }
+  const Camera camera = frame_camera(all_points, view, size.x, size.y);
+  all_points = {};
+
+  RenderOptions options;
+  options.width = size.x;
+  options.height = size.y;
+  options.wireframe = args.wireframe;
+  options.supersample = !args.no_supersample;
+
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (const RenderMesh& panel : panels) renderers.push_back(std::make_unique<Renderer>(panel, camera, options));
+  const int total_width = compare ? 2 * size.x + kSeparatorWidth : size.x;
+  const glm::dvec3 separator = options.background * 0.8;
+
+  ImageFileWriter writer(output, total_width, size.y);
+  constexpr int kRowsPerWrite = 64;
+  for (int y = 0; y < size.y; y += kRowsPerWrite) {
+    const int y_end = std::min(size.y, y + kRowsPerWrite);
+    Image band = renderers.front()->render_rows(y, y_end);
+    if (compare) band = side_by_side(band, renderers.back()->render_rows(y, y_end), separator);
+    writer.write_rows(band);
+  }
+  writer.finish();
+
+  std::printf("wrote %s: %dx%d, %zu input triangles, %zu PN triangles (L=%d, %s normals)%s\n",
+              output.string().c_str(), total_width, size.y, mesh.triangles.size(),
+              panels.back().triangles.size(), args.factor, std::string(to_string(*mode)).c_str(),
+              compare ? ", left: flat-shaded input" : "");
+}
+
+}  // namespace
+
+void register_render(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render the PN tessellation of a mesh to PNG or EXR");
+  cmd->add_option("mesh", args->mesh, "Input mesh (OBJ, PLY, STL, OFF, ... via Assimp)")->required();
+  cmd->add_option("-L,--tess-factor,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")
+      ->capture_default_str();
+  cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
+      ->capture_default_str();
+  cmd->add_option("--compare", args->compare,
+                  "'flat': the flat-shaded input mesh on the left, the PN tessellation on the right");
+  cmd->add_flag("--wireframe", args->wireframe,
+                "Overlay triangle edges (input triangles dark, their refinement light)");
+  cmd->add_option("--size", args->size, "Image size WxH per panel (1..8192 each)")->capture_default_str();
+  cmd->add_option("--azimuth", args->azimuth, "View angle around the up axis, degrees from the front")
+      ->capture_default_str();
+  cmd->add_option("--elevation", args->elevation, "View angle above the horizon, degrees (-90..90)")
+      ->capture_default_str();
+  cmd->add_option("--up", args->up, "Up axis of the model: y or z (front is +Z or -Y)")->capture_default_str();
+  cmd->add_flag("--no-supersample", args->no_supersample, "One sample per pixel instead of 2x2");
+  cmd->add_option("-o,--output", args->output, "Output image: .png (8-bit sRGB) or .exr (half-float linear)")
+      ->required();
+  cmd->callback([args] { run_render(*args); });
+}
+
+}  // namespace tessim::app

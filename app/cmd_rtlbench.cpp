@@ -1,0 +1,122 @@
+// tessim rtlbench: simulated cycles per second of the Verilated RTL versus the cycle model on
+// the same mesh, configuration and backpressure. Each implementation runs alone (no lock-step
+// comparison), driven by its own copy of the same geometry-engine model.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "model/error.hpp"
+#include "model/mesh_io.hpp"
+#include "model/pattern.hpp"
+#include "rtl/verilated/rtl_unit.hpp"
+#include "app/commands.hpp"
+#include "sim/gpe.hpp"
+#include "sim/host.hpp"
+#include "sim/unit.hpp"
+
+namespace tessim::app {
+
+namespace {
+
+struct RtlBenchArgs {
+  std::string mesh = "/usr/share/assimp/models/PLY/Wuson.ply";
+  int tess_factor = 4;
+  std::vector<int> int_blocks{1, 2, 4};
+  int gpe_cycles = sim::UnitConfig{}.gpe_cycles;
+  int repeat = 3;
+};
+
+struct Timing {
+  std::uint64_t cycles = 0;
+  double wall = 0, cpu = 0;
+};
+
+// Runs one implementation over the stream until the GPE has taken every vertex.
+template <typename Impl>
+Timing run_alone(Impl& impl, const std::vector<sim::TriangleFx>& stream, const sim::UnitConfig& cfg) {
+  std::uint64_t expected = 0;
+  for (const auto& t : stream) expected += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
+  sim::Gpe gpe(cfg);
+  std::size_t next = 0;
+  std::uint64_t received = 0, cycles = 0;
+  sim::UnitInputs in;
+  const std::clock_t c0 = std::clock();
+  const auto t0 = std::chrono::steady_clock::now();
+  while (received < expected) {
+    const sim::GpeCycle g = gpe.tick(impl.vtx_valid(), false);
+    in.tri_valid = next < stream.size();
+    if (in.tri_valid) in.tri = stream[next];
+    in.vtx_ready = g.ready;
+    if (in.tri_valid && impl.tri_ready()) ++next;
+    if (g.accepted) ++received;
+    impl.tick(in);
+    ++cycles;
+  }
+  Timing t;
+  t.cycles = cycles;
+  t.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t.cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+  return t;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+void run(const RtlBenchArgs& a) {
+  if (a.repeat < 1) throw InputError("command line", "--repeat", "must be at least 1");
+  const Mesh mesh = load_mesh(a.mesh);
+  std::printf("Verilated RTL versus cycle model on %s (%zu triangles), L=%d, GPE K=%d, median of %d runs\n",
+              mesh.source.c_str(), mesh.triangle_count(), a.tess_factor, a.gpe_cycles, a.repeat);
+  std::printf("%4s %10s %16s %16s %10s\n", "N", "cycles", "model cycles/s", "RTL cycles/s", "model/RTL");
+  for (int n : a.int_blocks) {
+    auto rtl = rtl::make_rtl_unit("n" + std::to_string(n), 1);
+    sim::UnitConfig cfg = rtl->config();
+    cfg.tess_factor = a.tess_factor;
+    cfg.gpe_cycles = a.gpe_cycles;
+    cfg.validate("command line");
+    const sim::HostScaling scaling = sim::host_scaling(mesh);
+    std::vector<sim::TriangleFx> stream;
+    stream.reserve(mesh.triangle_count());
+    for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
+      stream.push_back(sim::to_fixed(mesh, i, scaling, cfg.format, cfg.tess_factor));
+
+    std::vector<double> model_cps, rtl_cps;
+    std::uint64_t cycles = 0;
+    for (int i = 0; i < a.repeat; ++i) {
+      sim::Unit model(cfg);
+      const Timing m = run_alone(model, stream, cfg);
+      rtl->reset();
+      rtl->set_mode(cfg.normals);
+      const Timing r = run_alone(*rtl, stream, cfg);
+      if (m.cycles != r.cycles)
+        throw std::runtime_error("RTL and cycle model took different cycle counts; run tessim cosim");
+      cycles = m.cycles;
+      model_cps.push_back(static_cast<double>(m.cycles) / m.cpu);
+      rtl_cps.push_back(static_cast<double>(r.cycles) / r.cpu);
+    }
+    const double mc = median(model_cps), rc = median(rtl_cps);
+    std::printf("%4d %10llu %16.3e %16.3e %9.1fx\n", n, static_cast<unsigned long long>(cycles), mc, rc, mc / rc);
+  }
+  std::printf("(speeds in simulated cycles per CPU second of this process)\n");
+}
+
+}  // namespace
+
+void register_rtlbench(CLI::App& app) {
+  auto args = std::make_shared<RtlBenchArgs>();
+  CLI::App* sub = app.add_subcommand("rtlbench", "Speed of the Verilated RTL versus the cycle model on a mesh");
+  sub->add_option("mesh", args->mesh, "input mesh")->capture_default_str();
+  sub->add_option("-L,--tess-factor", args->tess_factor, "segments per edge")->capture_default_str();
+  sub->add_option("--int", args->int_blocks, "INT block counts (RTL builds n1..n4)")->capture_default_str();
+  sub->add_option("--gpe-cycles", args->gpe_cycles, "GPE cycles per vertex K")->capture_default_str();
+  sub->add_option("--repeat", args->repeat, "runs per configuration (median reported)")->capture_default_str();
+  sub->callback([args] { run(*args); });
+}
+
+}  // namespace tessim::app

@@ -1,0 +1,22 @@
+// tessim schema: the machine-readable description of the unit (sim/params.hpp) as JSON:
+// every configuration parameter (key, flag, aliases, RTL name, kind, type, range, default,
+// unit, description), the INT operation table, the statistics counters and the CPG cycles per
+// normal mode and coordinate format. Scripts read it instead of repeating the C++.
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.hpp"
+#include "sim/params.hpp"
+
+namespace tessim::app {
+
+void register_schema(CLI::App& app) {
+  auto indent = std::make_shared<int>(2);
+  CLI::App* sub = app.add_subcommand(
+      "schema", "Print the unit's parameters, INT operations, statistics and CPG cycles as JSON");
+  sub->add_option("--indent", *indent, "JSON indentation (-1: one line)")->capture_default_str();
+  sub->callback([indent] { std::cout << sim::schema_json().dump(*indent) << "\n"; });
+}
+
+}  // namespace tessim::app

@@ -1,0 +1,101 @@
+// tessim sim: a whole mesh through the cycle model of the unit and its geometry engine;
+// statistics, a human summary, a Perfetto trace, the issue schedule, the tessellated mesh.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "model/error.hpp"
+#include "model/mesh_io.hpp"
+#include "model/output_file.hpp"
+#include "model/pattern.hpp"
+#include "app/commands.hpp"
+#include "app/config_flags.hpp"
+#include "sim/config.hpp"
+#include "sim/simulate.hpp"
+#include "sim/trace.hpp"
+
+namespace tessim::app {
+
+namespace {
+
+constexpr const char* kDefaultMesh = "/usr/share/assimp/models/PLY/Wuson.ply";
+
+struct SimArgs {
+  std::string mesh = kDefaultMesh;
+  std::string stats;
+  std::string trace;
+  std::uint64_t trace_cycles = 20000;
+  std::string output;
+  bool schedule = false;
+};
+
+void run_sim(const SimArgs& a, const ConfigFlags& flags) {
+  const sim::UnitConfig cfg = flags.config();
+  if (!a.output.empty() && !is_supported_output(a.output))
+    throw InputError(a.output, "output", "unsupported extension (use .ply or .obj)");
+  if (a.trace_cycles == 0) throw InputError("command line", "--trace-cycles", "must be at least 1");
+
+  const Mesh mesh = load_mesh(a.mesh);
+  const int L = cfg.tess_factor;
+
+  sim::SimHooks hooks;
+  std::unique_ptr<MeshWriter> writer;
+  if (!a.output.empty()) {
+    writer = std::make_unique<MeshWriter>(
+        a.output, mesh.triangle_count() * static_cast<std::uint64_t>(pattern_vertex_count(L)),
+        mesh.triangle_count() * static_cast<std::uint64_t>(pattern_triangle_count(L)));
+    hooks.on_patch = [&](const sim::PatchOut& p) {
+      writer->add_patch(p.L, p.positions.data(), p.normals.data());
+    };
+  }
+  std::unique_ptr<sim::TraceWriter> trace;
+  if (!a.trace.empty()) {
+    trace = std::make_unique<sim::TraceWriter>(a.trace, cfg.int_blocks, a.trace_cycles);
+    hooks.observers.push_back(trace.get());
+  }
+  std::unique_ptr<sim::ScheduleRecorder> schedule;
+  if (a.schedule) {
+    schedule = std::make_unique<sim::ScheduleRecorder>();
+    hooks.observers.push_back(schedule.get());
+  }
+
+  const sim::SimResult result = sim::simulate(mesh, cfg, hooks);
+
+  // All outputs are complete in memory or in temporaries: move them into place.
+  if (writer) writer->finish();
+  if (trace) trace->finish();
+  if (!a.stats.empty()) {
+    AtomicOutput out(a.stats);
+    out.stream() << sim::stats_json(result).dump(2) << "\n";
+    out.commit();
+  }
+  std::cout << sim::summary(result);
+  if (schedule) {
+    std::cout << "\nissue schedule (v<vertex>.<op>, first cycles from the first issue):\n"
+              << schedule->table(cfg.int_blocks);
+    std::printf("steady state: %.3f cycles per vertex (retirement interval over 2520-vertex "
+                "periods of the first 8192 vertices, docs/schedule.md)\n",
+                schedule->steady_cycles_per_vertex());
+  }
+}
+
+}  // namespace
+
+void register_sim(CLI::App& app) {
+  auto args = std::make_shared<SimArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "sim", "Run a mesh through the cycle-level model of the unit and its geometry engine");
+  sub->add_option("mesh", args->mesh, "input mesh (OBJ, PLY, STL, OFF, ...)")->capture_default_str();
+  auto flags = std::make_shared<ConfigFlags>(*sub);  // --config and every parameter (sim/params.hpp)
+  sub->add_option("--stats", args->stats, "write the statistics as JSON");
+  sub->add_option("--trace", args->trace, "write a Chrome/Perfetto trace (JSON)");
+  sub->add_option("--trace-cycles", args->trace_cycles, "cycles recorded in the trace")->capture_default_str();
+  sub->add_option("-o,--output", args->output, "write the tessellated mesh (.ply or .obj)");
+  sub->add_flag("--schedule", args->schedule, "print the issue pattern of the first vertices");
+  sub->callback([args, flags] { run_sim(*args, *flags); });
+}
+
+}  // namespace tessim::app

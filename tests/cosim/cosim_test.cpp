@@ -1,0 +1,219 @@
+// Lock-step co-simulation of the Verilated RTL against the cycle model (docs/verification.md).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "model/error.hpp"
+#include "model/mesh_io.hpp"
+#include "rtl/verilated/rtl_unit.hpp"
+#include "cosim/cosim.hpp"
+#include "sim/host.hpp"
+#include "tests/support/run_tessim.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace tessim::cosim {
+namespace {
+
+CosimOptions options(int n, double stall, int gpe_cycles, std::uint64_t seed) {
+  CosimOptions o;
+  o.unit.int_blocks = n;
+  o.unit.gpe_stall_prob = stall;
+  o.unit.gpe_cycles = gpe_cycles;
+  o.unit.seed = seed;
+  o.variant = "n" + std::to_string(n);
+  o.seed = seed;
+  return o;
+}
+
+void expect_pass(const CosimReport& r, const CosimOptions& o) {
+  EXPECT_TRUE(r.passed) << format_report(r, o);
+  EXPECT_TRUE(r.counters_match);
+  EXPECT_EQ(r.reference.beyond_bound, 0u) << r.reference.worst;
+  EXPECT_GT(r.vertices, 0u);
+}
+
+std::uint64_t expected_vertices(const std::vector<sim::TriangleFx>& s) {
+  std::uint64_t n = 0;
+  for (const auto& t : s) n += static_cast<std::uint64_t>((t.L + 1) * (t.L + 2) / 2);
+  return n;
+}
+
+// Random triangles (10% degenerate) under the three kinds of backpressure, N = 1..4.
+struct Backpressure {
+  const char* name;
+  double stall;
+  int gpe_cycles;
+};
+class CosimRandom : public ::testing::TestWithParam<std::tuple<int, Backpressure>> {};
+
+TEST_P(CosimRandom, AgreesOnManySeeds) {
+  const auto [n, bp] = GetParam();
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const CosimOptions o = options(n, bp.stall, bp.gpe_cycles, seed * 7919 + static_cast<std::uint64_t>(n));
+    const auto stream = random_triangles(24, o.seed, o.unit.format, 6);
+    const CosimReport r = run_cosim(stream, o);
+    expect_pass(r, o);
+    EXPECT_EQ(r.vertices, expected_vertices(stream));
+    if (!r.passed) break;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllRtlBuilds, CosimRandom,
+    ::testing::Combine(::testing::Values(1, 2, 3, 4),
+                       ::testing::Values(Backpressure{"none", 0.0, 1}, Backpressure{"constant_k", 0.0, 8},
+                                         Backpressure{"random", 0.3, 2})),
+    [](const auto& info) {
+      return "N" + std::to_string(std::get<0>(info.param)) + "_" + std::get<1>(info.param).name;
+    });
+
+std::vector<sim::TriangleFx> mesh_stream(const char* path, const sim::NumberFormat& fmt, int L) {
+  const Mesh mesh = load_mesh(path);
+  const auto scaling = sim::host_scaling(mesh);
+  std::vector<sim::TriangleFx> s;
+  for (std::size_t i = 0; i < mesh.triangle_count(); ++i) s.push_back(sim::to_fixed(mesh, i, scaling, fmt, L));
+  return s;
+}
+
+TEST(CosimMesh, RealMeshesAgree) {
+  struct Case {
+    const char* path;
+    int n, L;
+    double stall;
+  };
+  for (const Case c : {Case{"/usr/share/assimp/models/OFF/Wuson.off", 2, 3, 0.3},
+                       Case{"/usr/share/assimp/models/STL/sphereWithHole.stl", 3, 2, 0.0},
+                       Case{"/usr/share/assimp/models/OBJ/spider.obj", 4, 2, 0.2},
+                       Case{"/usr/share/assimp/models/OBJ/spider.obj", 1, 1, 0.0}}) {
+    CosimOptions o = options(c.n, c.stall, 4, 11);
+    o.unit.tess_factor = c.L;
+    const auto stream = mesh_stream(c.path, o.unit.format, c.L);
+    const CosimReport r = run_cosim(stream, o);
+    SCOPED_TRACE(c.path);
+    expect_pass(r, o);
+    EXPECT_EQ(r.vertices, expected_vertices(stream));
+  }
+}
+
+TEST(CosimModes, ReflectAndLinearAgree) {
+  for (NormalMode m : {NormalMode::Reflect, NormalMode::Linear}) {
+    CosimOptions o = options(2, 0.2, 3, 5);
+    o.unit.normals = m;
+    const auto stream = random_triangles(20, 99, o.unit.format, 5);
+    const CosimReport r = run_cosim(stream, o);
+    expect_pass(r, o);
+  }
+}
+
+TEST(CosimReset, ResetInTheMiddleOfAStreamRecovers) {
+  CosimOptions o = options(2, 0.25, 2, 3);
+  o.reset_at = {150, 1000};  // while the first triangles are in CPG and TE
+  const auto stream = random_triangles(16, 3, o.unit.format, 5);
+  const CosimReport r = run_cosim(stream, o);
+  expect_pass(r, o);
+  EXPECT_EQ(r.vertices, expected_vertices(stream));  // a complete pass after the last reset
+}
+
+TEST(CosimDegenerate, DegenerateTrianglesPassWithoutXOrHang) {
+  // Only degenerate triangles, on the X-randomising verification build with several seeds.
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    CosimOptions o = options(2, 0.1, 2, seed);
+    o.variant = "n2_verif";
+    const auto stream = random_triangles(24, seed, o.unit.format, 4, /*degenerate_share=*/1.0);
+    const CosimReport r = run_cosim(stream, o);
+    EXPECT_FALSE(r.hang);
+    expect_pass(r, o);
+  }
+}
+
+// The checker can fail: RTL builds with an injected bug must be caught, at a named cycle.
+TEST(CosimInjectedBug, RoundingBugIsCaughtAtTheFirstDivergentCycle) {
+  CosimOptions o = options(2, 0.0, 1, 4);
+  o.variant = "n2_bug1";
+  const auto wave = std::filesystem::temp_directory_path() / "tessim_cosim_bug1.fst";
+  std::filesystem::remove(wave);
+  o.wave = wave;
+  o.wave_window = 50;
+  const auto stream = random_triangles(8, 4, o.unit.format, 4, 0.0);
+  const CosimReport r = run_cosim(stream, o);
+  ASSERT_TRUE(r.divergence.has_value()) << format_report(r, o);
+  EXPECT_FALSE(r.passed);
+  const Divergence& d = *r.divergence;
+  EXPECT_TRUE(d.field.rfind("vtx_pos", 0) == 0 || d.field.rfind("vtx_nrm", 0) == 0) << d.field;
+  EXPECT_NE(d.expected, d.actual);
+  // Every output before the reported cycle agreed: the same run stopped one cycle earlier
+  // is clean, so the reported cycle is the first divergent one.
+  const auto clean = run_cosim_until(stream, o, d.cycle);
+  EXPECT_FALSE(clean.divergence.has_value());
+  ASSERT_TRUE(std::filesystem::exists(wave));
+  EXPECT_GT(std::filesystem::file_size(wave), 100u);
+  std::filesystem::remove(wave);
+}
+
+TEST(CosimInjectedBug, DroppedStallIsCaught) {
+  // The fault needs a full VTX FIFO when a patch's last vertex retires: a fast CPG (linear
+  // normals), large patches and a slow, stalling GPE make the TE outrun its consumer.
+  CosimOptions o = options(2, 0.5, 4, 8);
+  o.variant = "n2_bug2";
+  o.unit.normals = NormalMode::Linear;
+  const auto stream = random_triangles(12, 8, o.unit.format, 8, 0.0);
+  const CosimReport r = run_cosim(stream, o);
+  ASSERT_TRUE(r.divergence.has_value()) << format_report(r, o);
+  EXPECT_FALSE(r.passed);
+  EXPECT_GT(r.divergence->cycle, 0u);
+  EXPECT_FALSE(run_cosim_until(stream, o, r.divergence->cycle).divergence.has_value());
+  // The fault-free build passes the same run.
+  o.variant = "n2";
+  expect_pass(run_cosim(stream, o), o);
+}
+
+TEST(CosimConfig, MismatchedConfigurationIsRejected) {
+  CosimOptions o = options(2, 0.0, 1, 1);
+  o.variant = "n3";  // the build has N = 3, the configuration N = 2
+  EXPECT_THROW(run_cosim(random_triangles(2, 1, o.unit.format, 2), o), tessim::InputError);
+  o.variant = "n2";
+  o.unit.int_latency = 2;  // no such build
+  EXPECT_THROW(run_cosim(random_triangles(2, 1, o.unit.format, 2), o), tessim::InputError);
+}
+
+// `tessim cosim` on the command line: the configuration file's values hold unless a flag is
+// given (the --int default used to overwrite the file's int_blocks), and an int_blocks without
+// an RTL build is bad input naming the builds that exist (it used to be an internal error).
+TEST(CosimCli, ConfigFileIntBlocksSelectTheBuild) {
+  tessim::testing::TempDir dir;
+  const auto cfg = dir.write("n1.json", R"({"int_blocks": 1, "gpe_cycles": 2})");
+  auto r = tessim::testing::run_tessim({"cosim", "--random", "6", "--random-max-L", "3", "--config", cfg.string()},
+                                       dir.path());
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("RTL n1 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("config: N=1 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("K=2 "), std::string::npos) << r.out;
+  // A flag given overrides the file, under its canonical name and its alias.
+  for (const char* flag : {"--int", "--int-blocks"}) {
+    r = tessim::testing::run_tessim(
+        {"cosim", "--random", "6", "--random-max-L", "3", "--config", cfg.string(), flag, "3"}, dir.path());
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("RTL n3 "), std::string::npos) << r.out;
+  }
+}
+
+TEST(CosimCli, IntBlocksWithoutAnRtlBuildIsAnInputError) {
+  tessim::testing::TempDir dir;
+  const auto r = tessim::testing::run_tessim({"cosim", "--random", "4", "--int", "5"}, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("tessim: error: command line: int_blocks: ", 0), 0u) << r.err;
+  for (const std::string& v : rtl::rtl_variants()) EXPECT_NE(r.err.find(v), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  // From a file, the file is named; an unknown --variant is bad input too.
+  const auto cfg = dir.write("n6.json", R"({"int_blocks": 6})");
+  const auto f = tessim::testing::run_tessim({"cosim", "--random", "4", "--config", cfg.string()}, dir.path());
+  EXPECT_EQ(f.status, 2) << f.err;
+  EXPECT_EQ(f.err.rfind("tessim: error: " + cfg.string() + ": int_blocks: ", 0), 0u) << f.err;
+  const auto v = tessim::testing::run_tessim({"cosim", "--random", "4", "--variant", "n9"}, dir.path());
+  EXPECT_EQ(v.status, 2) << v.err;
+  EXPECT_NE(v.err.find("--variant: no RTL build 'n9'; the RTL builds are n1, "), std::string::npos) << v.err;
+}
+
+}  // namespace
+}  // namespace tessim::cosim

@@ -1,0 +1,491 @@
+// The software rasterizer behind `tessim render`: coverage, depth, lighting, wireframe, image
+// files, and the render subcommand end to end.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include "model/error.hpp"
+#include "render/raster.hpp"
+
+namespace fs = std::filesystem;
+using tessim::InputError;
+using namespace tessim::app;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Unit icosphere: the icosahedron with every triangle split in four `levels` times, vertices
+// pushed onto the sphere; normals equal positions. Consistent outward (counter-clockwise) winding.
+RenderMesh icosphere(int levels) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  RenderMesh m;
+  for (const glm::dvec3& p : {glm::dvec3(-1, t, 0), glm::dvec3(1, t, 0), glm::dvec3(-1, -t, 0), glm::dvec3(1, -t, 0),
+                              glm::dvec3(0, -1, t), glm::dvec3(0, 1, t), glm::dvec3(0, -1, -t), glm::dvec3(0, 1, -t),
+                              glm::dvec3(t, 0, -1), glm::dvec3(t, 0, 1), glm::dvec3(-t, 0, -1), glm::dvec3(-t, 0, 1)})
+    m.positions.push_back(glm::normalize(p));
+  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
+    auto midpoint = [&](unsigned a, unsigned b) {
+      const auto key = std::minmax(a, b);
+      auto it = midpoints.find(key);
+      if (it != midpoints.end()) return it->second;
+      m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
+      const auto index = static_cast<unsigned>(m.positions.size() - 1);
+      midpoints.emplace(key, index);
+      return index;
+    };
+    std::vector<glm::uvec3> finer;
+    for (const glm::uvec3& tri : m.triangles) {
+      const unsigned ab = midpoint(tri.x, tri.y), bc = midpoint(tri.y, tri.z), ca = midpoint(tri.z, tri.x);
+      finer.insert(finer.end(), {{tri.x, ab, ca}, {tri.y, bc, ab}, {tri.z, ca, bc}, {ab, bc, ca}});
+    }
+    m.triangles = std::move(finer);
+  }
+  m.normals = m.positions;
+  return m;
+}
+
+double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+bool is_background(const float* rgb, const RenderOptions& options) {
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(rgb[k] - options.background[k]) > 1e-6) return false;
+  return true;
+}
+
+std::size_t count_covered(const Image& image, const RenderOptions& options) {
+  std::size_t covered = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) covered += !is_background(image.pixel(x, y), options);
+  return covered;
+}
+
+double max_difference(const Image& a, const Image& b) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) worst = std::max(worst, double(std::abs(a.rgb[i] - b.rgb[i])));
+  return worst;
+}
+
+// Camera basis as the renderer defines it.
+struct Basis {
+  glm::dvec3 forward, right, up;
+};
+Basis basis(const Camera& camera) {
+  Basis b;
+  b.forward = glm::normalize(camera.target - camera.eye);
+  b.right = glm::normalize(glm::cross(b.forward, camera.up));
+  b.up = glm::cross(b.right, b.forward);
+  return b;
+}
+
+// A scratch directory, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() /
+            ("tessim_raster_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  const fs::path& path() const { return path_; }
+  std::vector<fs::path> entries() const {
+    std::vector<fs::path> out;
+    for (const auto& e : fs::directory_iterator(path_)) out.push_back(e.path().filename());
+    return out;
+  }
+
+ private:
+  fs::path path_;
+};
+
+Image constant_image(int w, int h, float value) {
+  Image image(w, h);
+  std::fill(image.rgb.begin(), image.rgb.end(), value);
+  return image;
+}
+
+}  // namespace
+
+TEST(Raster, SphereCoversItsProjectedDisc) {
+  const RenderMesh sphere = icosphere(4);
+  RenderOptions options;
+  options.width = 400;
+  options.height = 300;
+  options.supersample = false;  // count whole pixels
+  const Camera camera = frame_camera(sphere.positions, ViewAngles{}, options.width, options.height);
+  // Framing a sphere centred at the origin keeps the target at its centre.
+  ASSERT_LT(glm::length(camera.target), 1e-3);
+
+  const Image image = render(sphere, camera, options);
+  const double distance = glm::length(camera.eye - camera.target);
+  // Silhouette cone half-angle asin(r/D); its image is a disc of radius tan(alpha) in the
+  // normalized image plane.
+  const double tan_alpha = std::tan(std::asin(1.0 / distance));
+  const double tan_v = std::tan(0.5 * camera.fov_y_deg * kPi / 180.0);
+  const double radius_px = tan_alpha / tan_v * 0.5 * options.height;
+  const double expected = kPi * radius_px * radius_px;
+  // One pixel along the rim either way, plus the polygonal sphere's slightly smaller silhouette.
+  const double tolerance = 2.0 * kPi * radius_px + 0.01 * expected;
+  const double covered = static_cast<double>(count_covered(image, options));
+  EXPECT_NEAR(covered, expected, tolerance) << "radius " << radius_px << " px";
+  // The framing leaves an 8% margin on the tighter (vertical) side.
+  EXPECT_NEAR(radius_px, 0.92 * 0.5 * options.height, 0.02 * radius_px);
+  // Nothing drawn in the corners.
+  EXPECT_TRUE(is_background(image.pixel(0, 0), options));
+  EXPECT_TRUE(is_background(image.pixel(options.width - 1, options.height - 1), options));
+}
+
+TEST(Raster, ZBufferKeepsTheNearerTriangle) {
+  Camera camera;  // looking down -Z from +5
+  camera.eye = {0, 0, 5};
+  camera.target = {0, 0, 0};
+  camera.up = {0, 1, 0};
+  camera.aspect = 1.0;
+  RenderOptions options;
+  options.width = options.height = 64;
+
+  // Same footprint around the image centre, at depths 0 (far) and 1 (near); their normals
+  // differ so that the two shade differently.
+  const glm::dvec3 toward_light = glm::normalize(options.light_in_view);
+  auto triangle = [](double z, glm::dvec3 normal) {
+    RenderMesh m;
+    m.positions = {{-1, -1, z}, {1, -1, z}, {0, 1, z}};
+    m.normals = {normal, normal, normal};
+    m.triangles = {{0, 1, 2}};
+    return m;
+  };
+  const RenderMesh near = triangle(1.0, toward_light), far = triangle(0.0, {0, 0, 1});
+  auto both = [](const RenderMesh& first, const RenderMesh& second) {
+    RenderMesh m = first;
+    m.positions.insert(m.positions.end(), second.positions.begin(), second.positions.end());
+    m.normals.insert(m.normals.end(), second.normals.begin(), second.normals.end());
+    m.triangles.push_back(second.triangles[0] + glm::uvec3(3));
+    return m;
+  };
+  const Image near_only = render(near, camera, options);
+  const Image far_only = render(far, camera, options);
+  const float* centre_near = near_only.pixel(32, 32);
+  const float* centre_far = far_only.pixel(32, 32);
+  ASSERT_GT(std::abs(luminance(centre_near) - luminance(centre_far)), 0.05);
+  for (const RenderMesh& scene : {both(near, far), both(far, near)}) {  // either drawing order
+    const Image image = render(scene, camera, options);
+    for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(image.pixel(32, 32)[k], centre_near[k]);
+  }
+}
+
+TEST(Raster, BrightestPixelFacesTheLight) {
+  const RenderMesh sphere = icosphere(5);
+  RenderOptions options;
+  options.width = options.height = 256;
+  options.supersample = false;
+  options.specular = 0.0;  // highlight would sit on the half vector, not the light direction
+  options.ambient = 0.0;   // sky-ground ambient would tilt the maximum towards "up"
+  const Camera camera = frame_camera(sphere.positions, ViewAngles{}, options.width, options.height);
+  const Image image = render(sphere, camera, options);
+
+  int best_x = 0, best_y = 0;
+  double best = -1.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (!is_background(image.pixel(x, y), options) && luminance(image.pixel(x, y)) > best) {
+        best = luminance(image.pixel(x, y));
+        best_x = x;
+        best_y = y;
+      }
+
+  // Ray through the centre of that pixel, hit on the unit sphere: the sphere's normal there.
+  const Basis b = basis(camera);
+  const double tan_v = std::tan(0.5 * camera.fov_y_deg * kPi / 180.0);
+  const double nx = (best_x + 0.5) / options.width * 2.0 - 1.0;
+  const double ny = 1.0 - (best_y + 0.5) / options.height * 2.0;
+  const glm::dvec3 ray = glm::normalize(b.forward + b.right * (nx * tan_v * camera.aspect) + b.up * (ny * tan_v));
+  const double along = -glm::dot(camera.eye, ray);
+  const double miss2 = glm::dot(camera.eye, camera.eye) - along * along;
+  ASSERT_LT(miss2, 1.0) << "brightest pixel is not on the sphere";
+  const glm::dvec3 normal = glm::normalize(camera.eye + ray * (along - std::sqrt(1.0 - miss2)));
+
+  const glm::dvec3 l = options.light_in_view;
+  const glm::dvec3 light = glm::normalize(b.right * l.x + b.up * l.y - b.forward * l.z);
+  const double angle_deg = std::acos(std::clamp(glm::dot(normal, light), -1.0, 1.0)) * 180.0 / kPi;
+  EXPECT_LT(angle_deg, 3.0);
+}
+
+TEST(Raster, TwoSidedLightingIgnoresWindingAndNormalOrientation) {
+  const RenderMesh sphere = icosphere(3);
+  RenderMesh scrambled = sphere;
+  // Every other triangle wound the other way round.
+  for (std::size_t t = 0; t < scrambled.triangles.size(); t += 2)
+    std::swap(scrambled.triangles[t].y, scrambled.triangles[t].z);
+  // Inward normals everywhere (flipping only some would change the interpolation itself).
+  for (glm::dvec3& n : scrambled.normals) n = -n;
+
+  RenderOptions options;
+  options.width = options.height = 128;
+  const Camera camera = frame_camera(sphere.positions, ViewAngles{}, options.width, options.height);
+  const Image reference = render(sphere, camera, options);
+  const Image image = render(scrambled, camera, options);
+  EXPECT_LT(max_difference(reference, image), 1e-4);
+}
+
+TEST(Raster, WireframeAddsEdgePixelsOnlyOnTheSurface) {
+  const RenderMesh sphere = icosphere(2);
+  RenderOptions options;
+  options.width = options.height = 200;
+  const Camera camera = frame_camera(sphere.positions, ViewAngles{}, options.width, options.height);
+  const Image plain = render(sphere, camera, options);
+  options.wireframe = true;
+  const Image wired = render(sphere, camera, options);
+
+  std::size_t darker = 0;
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) {
+      const float* p = plain.pixel(x, y);
+      const float* w = wired.pixel(x, y);
+      if (is_background(p, options)) {
+        for (int k = 0; k < 3; ++k) ASSERT_FLOAT_EQ(w[k], p[k]) << "wire outside the surface at " << x << "," << y;
+      } else if (luminance(w) < luminance(p) - 0.05) {
+        ++darker;
+      }
+    }
+  // 320 triangles, about half visible, edges tens of pixels long: thousands of edge pixels,
+  // yet far from all of the ~29000 covered pixels.
+  const std::size_t covered = count_covered(plain, options);
+  EXPECT_GT(darker, covered / 20);
+  EXPECT_LT(darker, covered / 2);
+
+  // Secondary edges (flags clear) are lighter than primary ones.
+  RenderMesh secondary = sphere;
+  secondary.edge_flags.assign(sphere.triangles.size(), 0);
+  const Image light_wires = render(secondary, camera, options);
+  double sum_primary = 0.0, sum_secondary = 0.0;
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) {
+      sum_primary += luminance(wired.pixel(x, y));
+      sum_secondary += luminance(light_wires.pixel(x, y));
+    }
+  EXPECT_GT(sum_secondary, sum_primary);
+}
+
+TEST(Raster, WireframeOfHiddenTrianglesStaysHidden) {
+  Camera camera;
+  camera.eye = {0, 0, 5};
+  camera.up = {0, 1, 0};
+  RenderOptions options;
+  options.width = options.height = 64;
+  RenderMesh scene;  // a small far triangle entirely behind a large near one
+  scene.positions = {{-3, -3, 1}, {3, -3, 1}, {0, 3, 1}, {-0.3, -0.3, 0}, {0.3, -0.3, 0}, {0, 0.3, 0}};
+  scene.normals.assign(6, {0, 0, 1});
+  scene.triangles = {{0, 1, 2}, {3, 4, 5}};
+  RenderMesh front_only = scene;
+  front_only.triangles.pop_back();
+  options.wireframe = true;
+  const Image a = render(scene, camera, options);
+  const Image b = render(front_only, camera, options);
+  EXPECT_EQ(max_difference(a, b), 0.0);
+}
+
+TEST(Raster, SideBySideKeepsPanelsAndSeparator) {
+  const Image left = constant_image(5, 3, 0.25f), right = constant_image(7, 3, 0.75f);
+  const Image both = side_by_side(left, right, glm::dvec3(0.5));
+  ASSERT_EQ(both.width, 5 + kSeparatorWidth + 7);
+  ASSERT_EQ(both.height, 3);
+  EXPECT_FLOAT_EQ(both.pixel(4, 2)[0], 0.25f);
+  EXPECT_FLOAT_EQ(both.pixel(5, 1)[1], 0.5f);
+  EXPECT_FLOAT_EQ(both.pixel(5 + kSeparatorWidth - 1, 0)[2], 0.5f);
+  EXPECT_FLOAT_EQ(both.pixel(5 + kSeparatorWidth, 0)[0], 0.75f);
+  EXPECT_THROW(side_by_side(left, constant_image(7, 4, 0.f), glm::dvec3(0.5)), std::invalid_argument);
+}
+
+TEST(Raster, BandsMatchAWholeRender) {
+  const RenderMesh sphere = icosphere(3);
+  RenderOptions options;
+  options.width = 90;
+  options.height = 150;  // more than one internal band
+  options.wireframe = true;
+  const Camera camera = frame_camera(sphere.positions, ViewAngles{20.0, -30.0}, options.width, options.height);
+  const Renderer renderer(sphere, camera, options);
+  const Image whole = renderer.render();
+  const Image top = renderer.render_rows(0, 77), bottom = renderer.render_rows(77, 150);
+  std::vector<float> joined = top.rgb;
+  joined.insert(joined.end(), bottom.rgb.begin(), bottom.rgb.end());
+  EXPECT_EQ(joined, whole.rgb);
+}
+
+TEST(Raster, ImageSizeParsing) {
+  EXPECT_EQ(parse_image_size("1x1"), glm::ivec2(1, 1));
+  EXPECT_EQ(parse_image_size("640X480"), glm::ivec2(640, 480));
+  EXPECT_EQ(parse_image_size("8192x8192"), glm::ivec2(8192, 8192));
+  for (const char* bad : {"", "x", "0x10", "10x0", "8193x10", "10x8193", "10", "axb", "10x10x10", "-5x5",
+                          "10 x 10", "99999999999x1", "1.5x2"})
+    EXPECT_THROW(parse_image_size(bad), InputError) << "'" << bad << "'";
+  RenderOptions options;
+  options.width = 0;
+  EXPECT_THROW(validate(options), InputError);
+  options.width = 10;
+  options.height = kMaxImageSide + 1;
+  EXPECT_THROW(validate(options), InputError);
+}
+
+TEST(Raster, FramingRejectsBadAngles) {
+  const RenderMesh sphere = icosphere(0);
+  EXPECT_THROW(frame_camera(sphere.positions, ViewAngles{0.0, 91.0}, 10, 10), InputError);
+  EXPECT_THROW(frame_camera(sphere.positions, ViewAngles{NAN, 0.0}, 10, 10), InputError);
+  EXPECT_THROW(frame_camera({}, ViewAngles{}, 10, 10), InputError);
+  // Straight down is allowed and still frames the sphere.
+  const Camera top = frame_camera(sphere.positions, ViewAngles{0.0, 90.0}, 10, 10);
+  EXPECT_GT(top.eye.y, 1.0);
+}
+
+TEST(Raster, BadExtensionOrDirectoryLeavesNoFile) {
+  TempDir dir;
+  const Image image = constant_image(8, 8, 0.5f);
+  EXPECT_THROW(write_image(image, dir.path() / "out.bmp"), InputError);
+  EXPECT_THROW(write_image(image, dir.path() / "out"), InputError);
+  EXPECT_THROW(write_image(image, dir.path() / "missing" / "out.png"), InputError);
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(Raster, UnfinishedImageLeavesNoFile) {
+  TempDir dir;
+  {
+    ImageFileWriter writer(dir.path() / "partial.png", 8, 8);
+    writer.write_rows(constant_image(8, 4, 0.5f));
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(Raster, PngAndExrReadBackAtTheirResolution) {
+  TempDir dir;
+  Image image = constant_image(37, 23, 0.5f);
+  image.pixel(36, 22)[0] = 1.0f;  // a marker in the last pixel (bottom right)
+  for (const char* name : {"out.png", "OUT.EXR"}) {
+    const fs::path path = dir.path() / name;
+    write_image(image, path);
+    auto in = OIIO::ImageInput::open(path.string());
+    ASSERT_TRUE(in) << OIIO::geterror();
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.width, 37);
+    EXPECT_EQ(spec.height, 23);
+    EXPECT_EQ(spec.nchannels, 3);
+    std::vector<float> pixels(37 * 23 * 3);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, pixels.data()));
+    in->close();
+    const bool png = path.extension() == ".png";
+    // PNG stores sRGB: linear 0.5 encodes to 188/255; EXR stores linear half floats.
+    const float mid = png ? 188.0f / 255.0f : 0.5f;
+    EXPECT_NEAR(pixels[0], mid, 1e-3) << name;
+    EXPECT_NEAR(pixels[(22 * 37 + 36) * 3 + 0], 1.0f, 1e-3) << name;
+    EXPECT_NEAR(pixels[(22 * 37 + 36) * 3 + 1], mid, 1e-3) << name;
+  }
+  auto entries = dir.entries();
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<fs::path>{"OUT.EXR", "out.png"}));  // no temporaries left
+}
+
+// ---- tessim render, end to end ------------------------------------------------------------
+
+namespace {
+
+void write_obj(const RenderMesh& mesh, const fs::path& path) {
+  std::ofstream out(path);
+  for (const glm::dvec3& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (const glm::dvec3& n : mesh.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+  for (const glm::uvec3& t : mesh.triangles)
+    out << "f " << t.x + 1 << "//" << t.x + 1 << ' ' << t.y + 1 << "//" << t.y + 1 << ' ' << t.z + 1 << "//"
+        << t.z + 1 << '\n';
+}
+
+int run_tessim(const std::string& arguments, const fs::path& log) {
+  const std::string command = std::string(TESSIM_BINARY) + " " + arguments + " >" + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+struct ReadBack {
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+};
+ReadBack read_back(const fs::path& path) {
+  ReadBack r;
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return r;
+  r.width = in->spec().width;
+  r.height = in->spec().height;
+  r.rgb.resize(static_cast<std::size_t>(r.width) * r.height * 3);
+  if (in->spec().nchannels != 3 || !in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, r.rgb.data())) r = {};
+  return r;
+}
+
+}  // namespace
+
+TEST(RenderCommand, RejectsBadArgumentsBeforeWritingAnything) {
+  TempDir dir;
+  const fs::path mesh = dir.path() / "ball.obj";
+  write_obj(icosphere(1), mesh);
+  const fs::path log = fs::temp_directory_path() / ("tessim_render_log_" + std::to_string(::getpid()));
+  const std::string out = (dir.path() / "out.png").string();
+  const std::string base = "render " + mesh.string() + " ";
+  for (const std::string& bad :
+       {base + "--size 0x10 -o " + out, base + "--size 10 -o " + out, base + "--size 9000x10 -o " + out,
+        base + "-L 0 -o " + out, base + "-L 65 -o " + out, base + "--normals cubic -o " + out,
+        base + "--compare smooth -o " + out, base + "--elevation 100 -o " + out, base + "--up x -o " + out,
+        base + "-o " + (dir.path() / "out.bmp").string(), base + "-o " + (dir.path() / "no" / "out.png").string(),
+        "render " + (dir.path() / "missing.obj").string() + " -o " + out}) {
+    EXPECT_EQ(run_tessim(bad, log), 2) << bad;
+    std::ifstream text(log);
+    const std::string message((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
+    EXPECT_NE(message.find("tessim: error:"), std::string::npos) << bad << "\n" << message;
+    EXPECT_EQ(dir.entries(), std::vector<fs::path>{"ball.obj"}) << bad;
+  }
+  fs::remove(log);
+}
+
+TEST(RenderCommand, CompareWritesFlatAndPnPanels) {
+  TempDir dir;
+  const fs::path mesh = dir.path() / "ball.obj";
+  write_obj(icosphere(1), mesh);
+  const fs::path log = dir.path() / "log.txt";
+  const fs::path png = dir.path() / "cmp.png";
+  ASSERT_EQ(run_tessim("render " + mesh.string() + " -L 3 --compare flat --wireframe --size 96x64 -o " + png.string(), log), 0);
+  const ReadBack both = read_back(png);
+  ASSERT_EQ(both.width, 2 * 96 + kSeparatorWidth);
+  ASSERT_EQ(both.height, 64);
+  // Same camera: the same silhouette (to within the PN bulge) in both panels, but different
+  // shading inside it (facets on the left, smooth on the right).
+  std::size_t left_covered = 0, right_covered = 0, differing = 0;
+  const float background = both.rgb[0];  // the top left corner is empty
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const float* l = &both.rgb[(static_cast<std::size_t>(y) * both.width + x) * 3];
+      const float* r = &both.rgb[(static_cast<std::size_t>(y) * both.width + x + 96 + kSeparatorWidth) * 3];
+      left_covered += std::abs(l[0] - background) > 0.02f;
+      right_covered += std::abs(r[0] - background) > 0.02f;
+      differing += std::abs(l[0] - r[0]) > 0.02f;
+    }
+  EXPECT_GT(left_covered, 96u * 64u / 4);
+  EXPECT_NEAR(double(right_covered), double(left_covered), 0.15 * left_covered);
+  EXPECT_GT(differing, left_covered / 4);
+
+  const fs::path exr = dir.path() / "single.exr";
+  ASSERT_EQ(run_tessim("render " + mesh.string() + " --normals derivative --size 50x40 -o " + exr.string(), log), 0);
+  const ReadBack single = read_back(exr);
+  EXPECT_EQ(single.width, 50);
+  EXPECT_EQ(single.height, 40);
+}

@@ -1,0 +1,319 @@
+// The description of the unit's parameters (sim/params.hpp) and everything driven by it:
+// JSON round trip, ranges, command-line flags and aliases, `tessim schema`, the README table.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "model/error.hpp"
+#include "app/config_flags.hpp"
+#include "sim/config.hpp"
+#include "sim/cpg.hpp"
+#include "sim/int_ops.hpp"
+#include "sim/params.hpp"
+#include "tests/support/run_tessim.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace tessim::sim {
+namespace {
+
+using nlohmann::json;
+using tessim::testing::TempDir;
+
+// A valid value of `p` other than its default.
+json other_value(const ParamSpec& p) {
+  const json d = p.get(UnitConfig{});
+  switch (p.type) {
+    case ParamType::Int: return d.get<long long>() == static_cast<long long>(p.max) ? json(static_cast<long long>(p.min))
+                                                                                   : json(static_cast<long long>(p.max));
+    case ParamType::Double: return d.get<double>() == p.max ? p.min : p.max;
+    case ParamType::UInt64: return std::numeric_limits<std::uint64_t>::max();
+    case ParamType::Enum:
+      for (const char* c : p.choices) {
+        UnitConfig cfg;
+        p.set(cfg, std::string(c));
+        if (c != d.get<std::string>() && hardware_supports(cfg.normals)) return c;
+      }
+  }
+  return nullptr;
+}
+
+// The InputError of applying and validating `j`, or "" when it is accepted.
+std::string error_of(const json& j) {
+  UnitConfig cfg;
+  try {
+    apply_json(cfg, j, "cfg.json");
+    cfg.validate("cfg.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Params, TableMatchesToJson) {
+  const json j = to_json(UnitConfig{});
+  std::set<std::string> keys;
+  for (const ParamSpec& p : unit_params()) {
+    keys.insert(p.key);
+    EXPECT_EQ(find_param(p.key), &p);
+    // The canonical flag is the key spelled as a flag.
+    std::string flag = std::string("--") + p.key;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    EXPECT_EQ(flag, p.flag);
+    EXPECT_TRUE(*p.description);
+  }
+  std::set<std::string> json_keys;
+  for (const auto& [k, v] : j.items()) json_keys.insert(k);
+  EXPECT_EQ(keys, json_keys);
+  EXPECT_EQ(find_param("int_blockz"), nullptr);
+}
+
+TEST(Params, EveryParameterRoundTripsJson) {
+  for (const ParamSpec& p : unit_params()) {
+    SCOPED_TRACE(p.key);
+    UnitConfig cfg;
+    apply_json(cfg, json{{p.key, other_value(p)}}, "test");
+    EXPECT_NO_THROW(cfg.validate("test"));
+    EXPECT_FALSE(cfg == UnitConfig{});
+    EXPECT_EQ(to_json(cfg)[p.key], other_value(p));
+    UnitConfig back;
+    apply_json(back, to_json(cfg), "test");
+    EXPECT_EQ(back, cfg);
+  }
+}
+
+TEST(Params, RangeBoundsAcceptedAndValuesOutsideRejectedNamingTheKey) {
+  for (const ParamSpec& p : unit_params()) {
+    SCOPED_TRACE(p.key);
+    if (p.type == ParamType::Int) {
+      const auto lo = static_cast<long long>(p.min), hi = static_cast<long long>(p.max);
+      EXPECT_EQ(error_of({{p.key, lo}}), "");
+      EXPECT_EQ(error_of({{p.key, hi}}), "");
+      for (long long bad : {lo - 1, hi + 1}) {
+        const std::string e = error_of({{p.key, bad}});
+        EXPECT_EQ(e, "cfg.json: " + std::string(p.key) + ": value " + std::to_string(bad) + " out of range [" +
+                         std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      }
+      EXPECT_NE(error_of({{p.key, "four"}}).find(std::string(p.key) + ": expected an integer"), std::string::npos);
+      EXPECT_NE(error_of({{p.key, 1.5}}).find(p.key), std::string::npos);
+    } else if (p.type == ParamType::Double) {
+      EXPECT_EQ(error_of({{p.key, p.min}}), "");
+      EXPECT_EQ(error_of({{p.key, p.max}}), "");
+      for (double bad : {p.min - 0.01, p.max + 0.01, std::nan("")}) {
+        const std::string e = error_of({{p.key, bad}});
+        EXPECT_NE(e.find("cfg.json: " + std::string(p.key) + ": value"), std::string::npos) << e;
+        EXPECT_NE(e.find("out of range"), std::string::npos) << e;
+      }
+      EXPECT_NE(error_of({{p.key, "x"}}).find(std::string(p.key) + ": expected a number"), std::string::npos);
+    } else if (p.type == ParamType::UInt64) {
+      EXPECT_EQ(error_of({{p.key, 0}}), "");
+      EXPECT_EQ(error_of({{p.key, std::numeric_limits<std::uint64_t>::max()}}), "");
+      EXPECT_EQ(error_of({{p.key, -1}}), "cfg.json: " + std::string(p.key) + ": expected a non-negative integer");
+    } else {
+      for (const char* c : p.choices) {
+        const std::string e = error_of({{p.key, c}});
+        EXPECT_TRUE(e.empty() || std::string(c) == "derivative") << e;
+      }
+      EXPECT_EQ(error_of({{p.key, "nonsense"}}),
+                "cfg.json: " + std::string(p.key) + ": 'nonsense' is not one of " + range_text(p));
+      EXPECT_EQ(error_of({{p.key, 3}}), "cfg.json: " + std::string(p.key) + ": expected a string");
+    }
+  }
+  // Checks across parameters stay.
+  EXPECT_EQ(error_of({{"coord_int_bits", 8}, {"coord_frac_bits", 26}}),
+            "cfg.json: coord_int_bits + coord_frac_bits: coordinate width 35 exceeds 32 bits");
+  EXPECT_NE(error_of({{"normals", "derivative"}}).find("cfg.json: normals: 'derivative' is available in the float reference only"),
+            std::string::npos);
+  EXPECT_EQ(error_of({{"int_blockz", 2}}), "cfg.json: int_blockz: unknown configuration key");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Command-line flags: registered from the table.
+
+UnitConfig parse(std::vector<std::string> args) {
+  CLI::App app;
+  app::ConfigFlags flags(app);
+  std::reverse(args.begin(), args.end());  // CLI11 takes a reversed vector
+  app.parse(args);
+  return flags.config();
+}
+
+TEST(ParamsCli, CanonicalFlagsAndAliasesGiveTheSameConfig) {
+  const UnitConfig canonical = parse({"--tess-factor", "8", "--int-blocks", "3", "--te-contexts", "6",
+                                      "--gpe-stall-prob", "0.25", "--cpg-mapping", "gpe", "--normals", "reflect"});
+  const UnitConfig aliases = parse({"-L", "8", "--int", "3", "--contexts", "6", "--stall", "0.25", "--cpg", "gpe",
+                                    "--normals", "reflect"});
+  EXPECT_EQ(canonical, aliases);
+  EXPECT_EQ(canonical.tess_factor, 8);
+  EXPECT_EQ(canonical.int_blocks, 3);
+  EXPECT_EQ(canonical.te_contexts, 6);
+  EXPECT_EQ(canonical.gpe_stall_prob, 0.25);
+  EXPECT_EQ(canonical.cpg_mapping, CpgMapping::Gpe);
+  EXPECT_EQ(canonical.normals, NormalMode::Reflect);
+  EXPECT_EQ(parse({}), UnitConfig{});
+}
+
+TEST(ParamsCli, EveryParameterHasAFlag) {
+  for (const ParamSpec& p : unit_params()) {
+    SCOPED_TRACE(p.key);
+    const json v = other_value(p);
+    const std::string text = v.is_string() ? v.get<std::string>() : v.dump();
+    UnitConfig expected;
+    apply_json(expected, json{{p.key, v}}, "test");
+    EXPECT_EQ(parse({p.flag, text}), expected);
+    for (const std::string& alias : alias_list(p)) EXPECT_EQ(parse({alias, text}), expected);
+  }
+}
+
+TEST(ParamsCli, FlagsOverrideTheFileOnlyWhenGiven) {
+  TempDir dir;
+  const auto file = dir.write("cfg.json", R"({"int_blocks": 1, "tess_factor": 3, "seed": 9})");
+  const UnitConfig from_file = parse({"--config", file.string()});
+  EXPECT_EQ(from_file.int_blocks, 1);
+  EXPECT_EQ(from_file.tess_factor, 3);
+  EXPECT_EQ(from_file.seed, 9u);
+  const UnitConfig overridden = parse({"--config", file.string(), "--int", "4"});
+  EXPECT_EQ(overridden.int_blocks, 4);
+  EXPECT_EQ(overridden.tess_factor, 3);
+}
+
+TEST(ParamsCli, BadFlagValuesNameTheKey) {
+  try {
+    parse({"--int", "0"});
+    FAIL() << "accepted --int 0";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "command line: int_blocks: value 0 out of range [1, 32]");
+  }
+  TempDir dir;
+  const auto file = dir.write("cfg.json", R"({"int_blocks": 1})");
+  try {
+    parse({"--config", file.string(), "-L", "65"});
+    FAIL() << "accepted -L 65";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              file.string() + " with command-line overrides: tess_factor: value 65 out of range [1, 64]");
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// tessim schema
+
+TEST(Schema, BinaryPrintsValidJsonListingEveryParameter) {
+  TempDir scratch;
+  const auto r = tessim::testing::run_tessim({"schema"}, scratch.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = json::parse(r.out);
+  EXPECT_EQ(s, schema_json());
+  std::set<std::string> listed;
+  for (const json& p : s["parameters"]) {
+    listed.insert(p["key"].get<std::string>());
+    for (const char* field : {"flag", "aliases", "rtl", "kind", "type", "default", "unit", "description"})
+      EXPECT_TRUE(p.contains(field)) << p["key"] << " lacks " << field;
+    EXPECT_TRUE(p.contains("choices") || (p.contains("minimum") && p.contains("maximum"))) << p["key"];
+    EXPECT_EQ(p["default"], to_json(UnitConfig{})[p["key"].get<std::string>()]);
+  }
+  std::set<std::string> keys;
+  const json config = to_json(UnitConfig{});
+  for (const auto& [k, v] : config.items()) keys.insert(k);
+  EXPECT_EQ(listed, keys);
+  EXPECT_EQ(s["rtl_parameters"]["IntBlocks"], "int_blocks");
+  EXPECT_EQ(s["rtl_parameters"]["Contexts"], "te_contexts");
+  EXPECT_EQ(s["rtl_parameters"].size(), 8u);
+}
+
+TEST(Schema, IntOpsAndStatistics) {
+  const json s = schema_json();
+  ASSERT_EQ(s["int_ops"].size(), 14u);
+  for (int op = 0; op < 14; ++op) {
+    const json& e = s["int_ops"][static_cast<std::size_t>(op)];
+    EXPECT_EQ(e["op"], op);
+    // An op depends only on ops of the level below (the doc's table).
+    for (const json& d : e["depends_on"])
+      EXPECT_EQ(s["int_ops"][d.get<std::size_t>()]["level"].get<int>() + 1, e["level"].get<int>());
+  }
+  EXPECT_EQ(s["int_ops"][13]["operands"], json({"T9", "T10", "T11"}));
+  EXPECT_EQ(s["int_ops"][6]["operands_linear"], json({"n0", "n2", "n5"}));
+  EXPECT_EQ(s["int_ops_per_mode"]["quadratic"]["ops_per_vertex"], 14);
+  EXPECT_EQ(s["int_ops_per_mode"]["linear"]["ops_per_vertex"], 11);
+  EXPECT_EQ(s["statistics"]["classes"]["te"],
+            json({"busy", "blocked_by_gpe", "starved_by_cpg", "idle", "pipeline"}));
+  EXPECT_EQ(s["statistics"]["classes"]["gpe"], json({"busy", "stalled", "cpg", "starved"}));
+}
+
+// The cycle model issues as many INT ops per vertex as the table says (unit.cpp keeps its own
+// copy of the operands until it switches to sim/int_ops.hpp).
+TEST(Schema, CycleModelIssuesTheOpsOfTheTable) {
+  const std::filesystem::path mesh = "/usr/share/assimp/models/STL/sphereWithHole.stl";
+  if (!std::filesystem::exists(mesh)) GTEST_SKIP() << mesh << " not installed (assimp-testmodels)";
+  TempDir dir;
+  for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+    const auto stats = dir.path() / "stats.json";
+    const auto r = tessim::testing::run_tessim(
+        {"sim", mesh.string(), "-L", "2", "--normals", std::string(to_string(m)), "--stats", stats.string()},
+        dir.path());
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::ifstream in(stats);
+    const json j = json::parse(in);
+    EXPECT_EQ(j["int"]["ops_per_vertex"].get<double>(), int_ops::ops_per_vertex(m)) << to_string(m);
+    EXPECT_EQ(j["cpg_cycles_per_triangle"].get<int>(), cpg_cycles(m, NumberFormat{})) << to_string(m);
+  }
+}
+
+TEST(Schema, CpgCyclesAreSimCpgCyclesAndIgnoreBaryBits) {
+  const json s = schema_json();
+  for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+    const json& rows = s["cpg_cycles"][std::string(to_string(m))];
+    EXPECT_GT(rows.size(), 100u);
+    for (const json& r : rows) {
+      NumberFormat f;
+      f.coord_int_bits = r["coord_int_bits"];
+      f.coord_frac_bits = r["coord_frac_bits"];
+      ASSERT_LE(f.coord_width(), 32);
+      for (int b = 7; b <= 20; ++b) {
+        f.bary_bits = b;
+        EXPECT_EQ(r["cycles"].get<int>(), cpg_cycles(m, f));
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Documentation: README's "Configuration files" table lists every parameter with its flags.
+
+TEST(ParamsDocs, ReadmeListsEveryParameter) {
+  std::ifstream in(std::string(TESSIM_SOURCE_DIR) + "/README.md");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto start = text.find("### Configuration files");
+  ASSERT_NE(start, std::string::npos);
+  const std::string section = text.substr(start, text.find("\n## ", start) - start);
+  const UnitConfig defaults{};
+  for (const ParamSpec& p : unit_params()) {
+    SCOPED_TRACE(p.key);
+    auto cell = [](const std::string& left, const std::string& text, const std::string& right) {
+      std::string c = left;
+      c += text;
+      c += right;
+      return c;
+    };
+    const auto row = section.find(cell("| `", p.key, "` |"));
+    ASSERT_NE(row, std::string::npos);
+    const std::string line = section.substr(row, section.find('\n', row) - row);
+    EXPECT_NE(line.find(cell("`", p.flag, "`")), std::string::npos) << line;
+    for (const std::string& alias : alias_list(p)) EXPECT_NE(line.find(cell("`", alias, "`")), std::string::npos) << line;
+    const json d = p.get(defaults);
+    EXPECT_NE(line.find(cell("| ", d.is_string() ? d.get<std::string>() : d.dump(), " |")), std::string::npos) << line;
+    EXPECT_NE(line.find(range_text(p)), std::string::npos) << line;
+  }
+}
+
+}  // namespace
+}  // namespace tessim::sim
