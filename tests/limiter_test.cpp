@@ -100,7 +100,8 @@ TEST(Limiter, ContextBoundRunGainsFromContextsNotBlocks) {
   const SimResult r6 = simulate(sphere(), config_of(more_blocks));
   const SimResult v6 = simulate(sphere(), config_of(more_contexts));
   EXPECT_NEAR(cycles_per_vertex(r6), cycles_per_vertex(r5), 0.01);
-  EXPECT_LT(cycles_per_vertex(v6), 0.9 * cycles_per_vertex(r5));
+  // 3.00 -> 2.80 cycles/vertex: down to the next bound, int_issue = 14 / 5.
+  EXPECT_LT(cycles_per_vertex(v6), cycles_per_vertex(r5) - 0.15);
   EXPECT_GT(r5.unit.te.context_limited, r5.unit.te.int_limited);
 }
 
