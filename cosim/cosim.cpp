@@ -69,6 +69,8 @@ std::optional<FieldDiff> diff_counters(const sim::UnitCounters& e, const sim::Un
   if (auto d = num("vertices_out", e.vertices_out, a.vertices_out)) return d;
   for (int i = 0; i < n; ++i)
     if (auto d = num("int_busy[" + std::to_string(i) + "]", e.int_busy[i], a.int_busy[i])) return d;
+  if (auto d = num("te_context_limited", e.te_context_limited, a.te_context_limited)) return d;
+  if (auto d = num("te_int_limited", e.te_int_limited, a.te_int_limited)) return d;
   if (auto d = num("te_busy", e.te_busy, a.te_busy)) return d;
   if (auto d = num("te_blocked_by_gpe", e.te_blocked_by_gpe, a.te_blocked_by_gpe)) return d;
   if (auto d = num("te_starved_by_cpg", e.te_starved_by_cpg, a.te_starved_by_cpg)) return d;
@@ -76,6 +78,7 @@ std::optional<FieldDiff> diff_counters(const sim::UnitCounters& e, const sim::Un
   if (auto d = num("te_pipeline", e.te_pipeline, a.te_pipeline)) return d;
   if (auto d = num("cpg_busy", e.cpg_busy, a.cpg_busy)) return d;
   if (auto d = num("cpg_blocked", e.cpg_blocked, a.cpg_blocked)) return d;
+  if (auto d = num("cpg_wait_gpe", e.cpg_wait_gpe, a.cpg_wait_gpe)) return d;
   if (auto d = num("cpg_idle", e.cpg_idle, a.cpg_idle)) return d;
   return std::nullopt;
 }
@@ -165,6 +168,8 @@ sim::UnitCounters model_counters(const sim::UnitStats& s) {
   c.triangles_in = s.triangles_in;
   c.vertices_out = s.vertices_out;
   for (std::size_t i = 0; i < s.int_blocks.size() && i < c.int_busy.size(); ++i) c.int_busy[i] = s.int_blocks[i].busy;
+  c.te_context_limited = s.te.context_limited;
+  c.te_int_limited = s.te.int_limited;
   c.te_busy = s.te.busy;
   c.te_blocked_by_gpe = s.te.blocked_by_gpe;
   c.te_starved_by_cpg = s.te.starved_by_cpg;

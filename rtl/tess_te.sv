@@ -34,6 +34,8 @@ module tess_te #(
   // Statistics (§10)
   input  logic                            upstream_busy_i,  // CPG busy or TRI FIFO not empty
   output logic [IntBlocks-1:0]            int_busy_o,
+  output logic                            te_ctx_limited_o,
+  output logic                            te_int_limited_o,
   output logic                            te_busy_o,
   output logic                            te_blocked_o,
   output logic                            te_starved_o,
@@ -321,15 +323,22 @@ module tess_te #(
   end
 
   // ------------------------------------------------------------------ statistics
-  logic head_all_done, no_point;
-  assign head_all_done = head_done;
-  assign no_point      = (count_q == '0) && !rd_full_i;
-  assign int_busy_o    = slot_valid;
-  assign te_busy_o     = (slot_valid != '0);
-  assign te_blocked_o  = !te_busy_o && head_all_done && vtx_full_i;
-  assign te_starved_o  = !te_busy_o && !te_blocked_o && no_point && upstream_busy_i;
-  assign te_idle_o     = !te_busy_o && !te_blocked_o && no_point && !upstream_busy_i;
-  assign te_pipeline_o = !te_busy_o && !te_blocked_o && !no_point;
+  // One class per cycle, the first that applies (§10): the head context waits on results (its
+  // candidates are age 0, masked when the queue is empty); ready candidates were left after the
+  // N issue slots; an op issued; then the cycles without issue.
+  logic head_waiting, left_over, any_issue, no_point;
+  assign head_waiting     = (count_q != '0) && !head_done && (ready[NumOps-1:0] == '0);
+  assign left_over        = (remaining != '0);
+  assign any_issue        = (slot_valid != '0);
+  assign no_point         = (count_q == '0) && !rd_full_i;
+  assign int_busy_o       = slot_valid;
+  assign te_ctx_limited_o = head_waiting;
+  assign te_int_limited_o = !head_waiting && left_over;
+  assign te_busy_o        = !head_waiting && !left_over && any_issue;
+  assign te_blocked_o     = !any_issue && head_done && vtx_full_i;
+  assign te_starved_o     = !any_issue && !te_blocked_o && no_point && upstream_busy_i;
+  assign te_idle_o        = !any_issue && !te_blocked_o && no_point && !upstream_busy_i;
+  assign te_pipeline_o    = !head_waiting && !any_issue && !te_blocked_o && !no_point;
 
 `ifndef SYNTHESIS
   always_ff @(posedge clk_i) begin

@@ -43,6 +43,8 @@ module tess_unit #(
   output logic [CtrW-1:0]                 perf_tri_in_o,
   output logic [CtrW-1:0]                 perf_vtx_out_o,
   output logic [IntBlocks*CtrW-1:0]       perf_int_busy_o,
+  output logic [CtrW-1:0]                 perf_te_context_limited_o,
+  output logic [CtrW-1:0]                 perf_te_int_limited_o,
   output logic [CtrW-1:0]                 perf_te_busy_o,
   output logic [CtrW-1:0]                 perf_te_blocked_by_gpe_o,
   output logic [CtrW-1:0]                 perf_te_starved_by_cpg_o,
@@ -143,7 +145,8 @@ module tess_unit #(
   logic [VtxW-1:0]      vtx_in, vtx_head;
   logic [VtxCntW-1:0]   vtx_count;
   logic [IntBlocks-1:0] int_busy;
-  logic                 te_busy, te_blocked, te_starved, te_idle, te_pipeline;
+  logic                 te_ctx_limited, te_int_limited, te_busy, te_blocked, te_starved, te_idle;
+  logic                 te_pipeline;
 
   tess_te #(
     .CoordWidth(W),
@@ -171,6 +174,8 @@ module tess_unit #(
     .vtx_o          (vtx_in),
     .upstream_busy_i(cpg_active || !tri_empty),
     .int_busy_o     (int_busy),
+    .te_ctx_limited_o(te_ctx_limited),
+    .te_int_limited_o(te_int_limited),
     .te_busy_o      (te_busy),
     .te_blocked_o   (te_blocked),
     .te_starved_o   (te_starved),
@@ -204,10 +209,12 @@ module tess_unit #(
 
   // ------------------------------------------------------------------ performance counters
   // One increment vector, one adder each: counters[k] += inc[k] every cycle out of reset.
-  localparam int unsigned NumCtr = 11 + IntBlocks;
+  localparam int unsigned NumCtr = 13 + IntBlocks;
   logic [NumCtr-1:0] ctr_inc;
   (* mem2reg *) logic [CtrW-1:0]   ctr_q [NumCtr];
   assign ctr_inc = {int_busy,
+                    te_int_limited,             // 12
+                    te_ctx_limited,             // 11
                     !cpg_busy && !cpg_blocked,  // 10: cpg idle
                     cpg_blocked,                // 9
                     cpg_busy,                   // 8
@@ -238,8 +245,10 @@ module tess_unit #(
   assign perf_cpg_busy_o          = ctr_q[8];
   assign perf_cpg_blocked_o       = ctr_q[9];
   assign perf_cpg_idle_o          = ctr_q[10];
+  assign perf_te_context_limited_o = ctr_q[11];
+  assign perf_te_int_limited_o    = ctr_q[12];
   for (genvar i = 0; i < IntBlocks; i++) begin : g_int_ctr
-    assign perf_int_busy_o[i*CtrW +: CtrW] = ctr_q[11 + i];
+    assign perf_int_busy_o[i*CtrW +: CtrW] = ctr_q[13 + i];
   end
 
 `ifndef SYNTHESIS

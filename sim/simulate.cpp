@@ -25,6 +25,10 @@ std::uint64_t watchdog_cycles(const UnitConfig& cfg, int cpg_c) {
 
 double ratio(std::uint64_t a, std::uint64_t b) { return b == 0 ? 0.0 : static_cast<double>(a) / b; }
 
+std::uint64_t total(const TeStats& t) {
+  return t.context_limited + t.int_limited + t.busy + t.blocked_by_gpe + t.starved_by_cpg + t.idle + t.pipeline;
+}
+
 std::string percent(std::uint64_t part, std::uint64_t whole) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f%%", 100.0 * ratio(part, whole));
@@ -72,6 +76,8 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   std::uint64_t accepted = 0;
   std::uint64_t last_progress = 0;
   std::uint64_t cycle = 0;
+  TeStats interval;            // TE classes since the last accepted vertex
+  bool interval_late = false;  // the GPE waited in this interval
 
   while (accepted < total) {
     const bool tri_ready = unit.tri_ready();
@@ -106,7 +112,18 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
       last_progress = cycle;
     }
     const bool pushed = in.tri_valid && tri_ready;
+    const bool gpe_waited = g.spare && accepted > 0;  // GPE ready, no vertex, after its first
     unit.tick(in);
+    count_class(interval, unit.activity().te);
+    if (gpe_waited) {
+      ++r.gpe_waited;
+      interval_late = true;
+    }
+    if (g.accepted) {
+      if (interval_late) add(r.te_late, interval);
+      interval = TeStats{};
+      interval_late = false;
+    }
     if (!observers.empty()) {
       std::erase_if(observers, [&](CycleObserver* o) { return !o->on_cycle(unit, g); });
     }
@@ -138,40 +155,58 @@ double int_utilisation(const SimResult& r) {
 std::string bottleneck(const SimResult& r) {
   const std::uint64_t cycles = r.unit.cycles;
   if (cycles == 0) return "none (empty run)";
-  char buf[256];
-  const double gpe_busy = ratio(r.gpe.busy, cycles);
-  if (gpe_busy >= 0.9) {
+  const UnitConfig& c = r.config;
+  char buf[320];
+  // The GPE limits when it waited for a vertex no more often than the TE waited for it.
+  if (r.gpe_waited <= r.unit.te.blocked_by_gpe) {
     std::snprintf(buf, sizeof buf,
-                  "GPE: busy %.1f%% of cycles (one vertex / %d cycles); TE blocked by GPE %.1f%%",
-                  100 * gpe_busy, r.config.gpe_cycles, 100 * ratio(r.unit.te.blocked_by_gpe, cycles));
+                  "GPE: waited for a vertex %.1f%% of cycles, TE blocked by GPE %.1f%% "
+                  "(one vertex / %d cycles, busy %.1f%%)",
+                  100 * ratio(r.gpe_waited, cycles), 100 * ratio(r.unit.te.blocked_by_gpe, cycles), c.gpe_cycles,
+                  100 * ratio(r.gpe.busy, cycles));
     return buf;
   }
-  // Otherwise the TE does not keep the GPE busy; say why: INT blocks saturated, no work from
-  // the CPG, or dependences and INT latency with too few contexts.
-  const double util = int_utilisation(r);
-  const double starved = ratio(r.unit.te.starved_by_cpg, cycles);
-  const double pipeline = ratio(r.unit.te.pipeline, cycles);
-  if (util >= 0.9) {
-    std::snprintf(buf, sizeof buf, "INT blocks: utilisation %.1f%% (%d blocks, %.2f cycles/vertex at best)",
-                  100 * util, r.config.int_blocks,
-                  (r.config.normals == NormalMode::Linear ? 11.0 : 14.0) / r.config.int_blocks);
-  } else if (starved >= 0.1 && starved >= pipeline) {
+  // Otherwise the unit delivered vertices late: the stall class of the TE that dominates the late
+  // vertex intervals.
+  const TeStats& w = r.te_late;
+  const double waited = static_cast<double>(total(w));
+  const std::uint64_t top = std::max({w.context_limited, w.int_limited, w.starved_by_cpg});
+  if (top == 0) {
     std::snprintf(buf, sizeof buf,
-                  "CPG: TE starved by CPG %.1f%% of cycles (%s mapping, C = %d cycles per triangle, "
-                  "%d vertices per patch)",
-                  100 * starved, to_string(r.config.cpg_mapping).c_str(), r.cpg_cycles,
-                  pattern_vertex_count(r.config.tess_factor));
-  } else if (pipeline >= 0.1) {
+                  "none dominant: GPE waited %.1f%% of cycles, no TE stall class in the late vertex "
+                  "intervals (busy %.1f%%, pipeline %.1f%%)",
+                  100 * ratio(r.gpe_waited, cycles), 100 * w.busy / waited, 100 * w.pipeline / waited);
+  } else if (w.starved_by_cpg == top) {
     std::snprintf(buf, sizeof buf,
-                  "TE dependences: %.1f%% of cycles waiting on results (INT latency %d, %d contexts), "
-                  "INT utilisation %.1f%%",
-                  100 * pipeline, r.config.int_latency, r.config.te_contexts, 100 * util);
+                  "CPG: TE starved by CPG in %.1f%% of the late vertex intervals (GPE waited %.1f%% of cycles; "
+                  "%s mapping, C = %d cycles per triangle, %d vertices per patch)",
+                  100 * w.starved_by_cpg / waited, 100 * ratio(r.gpe_waited, cycles),
+                  to_string(c.cpg_mapping).c_str(), r.cpg_cycles, pattern_vertex_count(c.tess_factor));
+  } else if (w.int_limited == top) {
+    std::snprintf(buf, sizeof buf,
+                  "INT blocks: all %d busy with ready ops left in %.1f%% of the late vertex intervals "
+                  "(GPE waited %.1f%% of cycles; utilisation %.1f%%, %.2f cycles/vertex at best)",
+                  c.int_blocks, 100 * w.int_limited / waited, 100 * ratio(r.gpe_waited, cycles),
+                  100 * int_utilisation(r), (c.normals == NormalMode::Linear ? 11.0 : 14.0) / c.int_blocks);
   } else {
-    std::snprintf(buf, sizeof buf, "none dominant: GPE busy %.1f%%, INT utilisation %.1f%%, TE starved by CPG %.1f%%",
-                  100 * gpe_busy, 100 * util, 100 * starved);
+    std::snprintf(buf, sizeof buf,
+                  "TE contexts: oldest vertex waiting on its dependence chain in %.1f%% of the late vertex "
+                  "intervals (GPE waited %.1f%% of cycles; %d contexts, INT latency %d, INT utilisation %.1f%%)",
+                  100 * w.context_limited / waited, 100 * ratio(r.gpe_waited, cycles), c.te_contexts,
+                  c.int_latency, 100 * int_utilisation(r));
   }
   return buf;
 }
+
+namespace {
+
+nlohmann::json te_json(const TeStats& t) {
+  return {{"context_limited", t.context_limited}, {"int_limited", t.int_limited}, {"busy", t.busy},
+          {"blocked_by_gpe", t.blocked_by_gpe},   {"starved_by_cpg", t.starved_by_cpg}, {"idle", t.idle},
+          {"pipeline", t.pipeline}};
+}
+
+}  // namespace
 
 nlohmann::json stats_json(const SimResult& r) {
   using nlohmann::json;
@@ -197,12 +232,7 @@ nlohmann::json stats_json(const SimResult& r) {
         {"busy", busy_total},
         {"ops_per_vertex", ratio(busy_total, u.vertices_out)},
         {"utilisation", int_utilisation(r)}}},
-      {"te",
-       {{"busy", u.te.busy},
-        {"blocked_by_gpe", u.te.blocked_by_gpe},
-        {"starved_by_cpg", u.te.starved_by_cpg},
-        {"idle", u.te.idle},
-        {"pipeline", u.te.pipeline}}},
+      {"te", te_json(u.te)},
       {"cpg",
        {{"busy", u.cpg.busy}, {"blocked", u.cpg.blocked}, {"wait_gpe", u.cpg.wait_gpe}, {"idle", u.cpg.idle}}},
       {"gpe",
@@ -211,6 +241,7 @@ nlohmann::json stats_json(const SimResult& r) {
         {"stalled", r.gpe.stalled},
         {"cpg", r.gpe.cpg},
         {"starved", r.gpe.starved}}},
+      {"limit", {{"gpe_waited", r.gpe_waited}, {"te_late", te_json(r.te_late)}}},
       {"stalls",
        {{"te_starved_by_cpg", u.te.starved_by_cpg},
         {"te_blocked_by_gpe", u.te.blocked_by_gpe},
@@ -251,13 +282,20 @@ std::string summary(const SimResult& r) {
     << "  per block:";
   for (std::size_t i = 0; i < u.int_blocks.size(); ++i) s << "  " << i << ":" << percent(u.int_blocks[i].busy, n);
   s << "\n";
-  s << "TE       busy " << percent(u.te.busy, n) << "  pipeline " << percent(u.te.pipeline, n)
-    << "  blocked_by_gpe " << percent(u.te.blocked_by_gpe, n) << "  starved_by_cpg "
-    << percent(u.te.starved_by_cpg, n) << "  idle " << percent(u.te.idle, n) << "\n";
+  s << "TE       context_limited " << percent(u.te.context_limited, n) << "  int_limited "
+    << percent(u.te.int_limited, n) << "  busy " << percent(u.te.busy, n) << "  blocked_by_gpe "
+    << percent(u.te.blocked_by_gpe, n) << "  starved_by_cpg " << percent(u.te.starved_by_cpg, n) << "  idle "
+    << percent(u.te.idle, n) << "  pipeline " << percent(u.te.pipeline, n) << "\n";
   s << "CPG      busy " << percent(u.cpg.busy, n) << "  blocked " << percent(u.cpg.blocked, n)
     << "  wait_gpe " << percent(u.cpg.wait_gpe, n) << "  idle " << percent(u.cpg.idle, n) << "\n";
   s << "GPE      busy " << percent(r.gpe.busy, n) << "  stalled " << percent(r.gpe.stalled, n) << "  cpg "
     << percent(r.gpe.cpg, n) << "  starved " << percent(r.gpe.starved, n) << "\n";
+  const TeStats& w = r.te_late;
+  const std::uint64_t gw = total(w);
+  s << "late     GPE waited " << percent(r.gpe_waited, n) << " of cycles; TE in the late intervals: context_limited "
+    << percent(w.context_limited, gw) << "  int_limited " << percent(w.int_limited, gw) << "  starved_by_cpg "
+    << percent(w.starved_by_cpg, gw) << "  busy " << percent(w.busy, gw) << "  other "
+    << percent(w.pipeline + w.idle + w.blocked_by_gpe, gw) << "\n";
   if (r.degenerate_patches > 0 || r.zero_normals > 0)
     s << "warning  " << r.degenerate_patches << " patches hit a zero divisor (zero-length edge or "
       << "vanishing mid-edge normal), " << r.zero_normals << " output normals vanished\n";

@@ -41,8 +41,8 @@ struct UnitCounters {
   std::uint64_t triangles_in = 0;
   std::uint64_t vertices_out = 0;
   std::array<std::uint64_t, kMaxIntBlocks> int_busy{};
-  std::uint64_t te_busy = 0, te_blocked_by_gpe = 0, te_starved_by_cpg = 0, te_idle = 0,
-                te_pipeline = 0;
+  std::uint64_t te_context_limited = 0, te_int_limited = 0, te_busy = 0, te_blocked_by_gpe = 0,
+                te_starved_by_cpg = 0, te_idle = 0, te_pipeline = 0;
   std::uint64_t cpg_busy = 0, cpg_blocked = 0, cpg_wait_gpe = 0, cpg_idle = 0;
   bool operator==(const UnitCounters&) const = default;
 };

@@ -197,6 +197,8 @@ class VerilatedUnit final : public RtlUnit {
     k.triangles_in = model_->perf_tri_in_o;
     k.vertices_out = model_->perf_vtx_out_o;
     for (int i = 0; i < int_blocks(); ++i) k.int_busy[i] = detail::get_bits(model_->perf_int_busy_o, 64 * i, 64);
+    k.te_context_limited = model_->perf_te_context_limited_o;
+    k.te_int_limited = model_->perf_te_int_limited_o;
     k.te_busy = model_->perf_te_busy_o;
     k.te_blocked_by_gpe = model_->perf_te_blocked_by_gpe_o;
     k.te_starved_by_cpg = model_->perf_te_starved_by_cpg_o;

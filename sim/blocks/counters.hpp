@@ -16,6 +16,8 @@ struct IntBlockStats {
   bool operator==(const IntBlockStats&) const = default;
 };
 struct TeStats {
+  std::uint64_t context_limited = 0;
+  std::uint64_t int_limited = 0;
   std::uint64_t busy = 0;
   std::uint64_t blocked_by_gpe = 0;
   std::uint64_t starved_by_cpg = 0;
@@ -23,6 +25,29 @@ struct TeStats {
   std::uint64_t pipeline = 0;
   bool operator==(const TeStats&) const = default;
 };
+// Adds one cycle of class `c` to `s`.
+inline void count_class(TeStats& s, TeClass c) {
+  switch (c) {
+    case TeClass::ContextLimited: ++s.context_limited; break;
+    case TeClass::IntLimited: ++s.int_limited; break;
+    case TeClass::Busy: ++s.busy; break;
+    case TeClass::BlockedByGpe: ++s.blocked_by_gpe; break;
+    case TeClass::StarvedByCpg: ++s.starved_by_cpg; break;
+    case TeClass::Idle: ++s.idle; break;
+    case TeClass::Pipeline: ++s.pipeline; break;
+  }
+}
+
+inline void add(TeStats& s, const TeStats& t) {
+  s.context_limited += t.context_limited;
+  s.int_limited += t.int_limited;
+  s.busy += t.busy;
+  s.blocked_by_gpe += t.blocked_by_gpe;
+  s.starved_by_cpg += t.starved_by_cpg;
+  s.idle += t.idle;
+  s.pipeline += t.pipeline;
+}
+
 struct CpgStats {
   std::uint64_t busy = 0;
   std::uint64_t blocked = 0;
@@ -60,13 +85,7 @@ class Counters {
       if (i < issued) ++s.busy;
       else ++s.idle;
     }
-    switch (te) {
-      case TeClass::Busy: ++stats_.te.busy; break;
-      case TeClass::BlockedByGpe: ++stats_.te.blocked_by_gpe; break;
-      case TeClass::StarvedByCpg: ++stats_.te.starved_by_cpg; break;
-      case TeClass::Idle: ++stats_.te.idle; break;
-      case TeClass::Pipeline: ++stats_.te.pipeline; break;
-    }
+    count_class(stats_.te, te);
     switch (cpg) {
       case CpgClass::Busy: ++stats_.cpg.busy; break;
       case CpgClass::Blocked: ++stats_.cpg.blocked; break;

@@ -4,6 +4,8 @@ namespace tessim::sim {
 
 const char* to_string(TeClass c) {
   switch (c) {
+    case TeClass::ContextLimited: return "context_limited";
+    case TeClass::IntLimited: return "int_limited";
     case TeClass::Busy: return "busy";
     case TeClass::BlockedByGpe: return "blocked_by_gpe";
     case TeClass::StarvedByCpg: return "starved_by_cpg";

@@ -19,8 +19,8 @@
 
 namespace tessim::sim {
 
-// The TE's statistics class of a cycle (docs/microarchitecture.md §10).
-enum class TeClass : std::uint8_t { Busy, BlockedByGpe, StarvedByCpg, Idle, Pipeline };
+// The TE's statistics class of a cycle (docs/microarchitecture.md §10), in priority order.
+enum class TeClass : std::uint8_t { ContextLimited, IntLimited, Busy, BlockedByGpe, StarvedByCpg, Idle, Pipeline };
 const char* to_string(TeClass c);
 
 // One operation issued to an INT block.
@@ -41,14 +41,21 @@ class Te {
   int int_blocks() const { return ints_.blocks(); }
   // The head context has every result: it retires unless the VTX FIFO is full.
   bool head_done() const { return count_ > 0 && contexts_[static_cast<std::size_t>(head_)].done == all_ops_; }
+  // The head context waits on results: not all done and no op ready (the registered state: call
+  // before schedule(), which takes the issued ops out of the ready masks).
+  bool head_waiting() const {
+    const Context& h = contexts_[static_cast<std::size_t>(head_)];
+    return count_ > 0 && h.done != all_ops_ && h.ready == 0;
+  }
   bool can_allocate(bool point_available) const { return count_ < n_contexts_ && point_available; }
 
   // Scheduler of the cycle: issues up to N ready ops reading the control points in `buffers`;
   // returns how many (the i-th went to INT block i, described by issued_ops()[i]).
   int schedule(const ControlPointBuffer& buffers) {
     int issued = 0;
+    left_over_ = false;
     const int n_blocks = ints_.blocks();
-    for (int age = 0; age < count_ && issued < n_blocks; ++age) {
+    for (int age = 0; age < count_; ++age) {
       int slot = head_ + age;
       if (slot >= n_contexts_) slot -= n_contexts_;
       Context& ctx = contexts_[static_cast<std::size_t>(slot)];
@@ -58,12 +65,24 @@ class Te {
         issue(buffers, ctx, slot, op, issued);
         ++issued;
       }
+      // All N blocks taken and this context still has a ready op: it waits for an INT block.
+      if (ctx.ready != 0) {
+        left_over_ = true;
+        break;
+      }
     }
     return issued;
   }
+  // Of the last schedule(): a ready op was left unissued because all N INT blocks were taken.
+  bool left_over() const { return left_over_; }
   const IssuedOp* issued_ops() const { return issued_.data(); }
 
-  TeClass classify(int issued, bool head_done, bool vtx_full, bool point_available, bool upstream_busy) const {
+  // The class of the cycle whose schedule() issued `issued` ops; head_waiting() as it was before
+  // schedule(), the other flags from the registered state (doc §10).
+  TeClass classify(int issued, bool head_waiting, bool head_done, bool vtx_full, bool point_available,
+                   bool upstream_busy) const {
+    if (head_waiting) return TeClass::ContextLimited;
+    if (left_over_) return TeClass::IntLimited;
     if (issued > 0) return TeClass::Busy;
     if (head_done && vtx_full) return TeClass::BlockedByGpe;
     if (count_ == 0 && !point_available) return upstream_busy ? TeClass::StarvedByCpg : TeClass::Idle;
@@ -134,6 +153,7 @@ class Te {
   Dpg dpg_;
   IntBlocks ints_;
   std::vector<IssuedOp> issued_;
+  bool left_over_ = false;
 };
 
 // Inline: called every cycle from Unit::tick.

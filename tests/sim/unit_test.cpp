@@ -143,7 +143,9 @@ TEST(UnitTimeline, SingleContextSingleBlock) {
   EXPECT_EQ(r.unit.vertices_out, 3u);
   // CPG: accept + (C-1) computes + write = C+1 busy cycles, idle otherwise.
   EXPECT_EQ(r.unit.cpg.busy, static_cast<std::uint64_t>(C + 1));
-  EXPECT_EQ(r.unit.te.busy, 42u);
+  // One context with latency 1: the head never waits on a result; 9 ready L1 ops for 1 block.
+  EXPECT_EQ(r.unit.te.busy + r.unit.te.int_limited, 42u);
+  EXPECT_EQ(r.unit.te.context_limited, 0u);
   EXPECT_EQ(r.unit.te.starved_by_cpg, static_cast<std::uint64_t>(C + 1));  // cycles 1..C+1
   EXPECT_EQ(r.unit.te.idle, 2u);  // cycle 0 (nothing queued yet) and the last cycle
 }
@@ -346,7 +348,9 @@ void expect_consistent(const SimResult& r, std::uint64_t triangles, int L, Norma
     busy += b.busy;
   }
   EXPECT_EQ(busy, static_cast<std::uint64_t>(ops_per_vertex(mode)) * u.vertices_out);
-  EXPECT_EQ(u.te.busy + u.te.blocked_by_gpe + u.te.starved_by_cpg + u.te.idle + u.te.pipeline, n);
+  EXPECT_EQ(u.te.context_limited + u.te.int_limited + u.te.busy + u.te.blocked_by_gpe + u.te.starved_by_cpg +
+                u.te.idle + u.te.pipeline,
+            n);
   EXPECT_EQ(u.cpg.busy + u.cpg.blocked + u.cpg.wait_gpe + u.cpg.idle, n);
   EXPECT_EQ(r.gpe.busy + r.gpe.stalled + r.gpe.cpg + r.gpe.starved, n);
   EXPECT_EQ(r.gpe.cycles, n);
