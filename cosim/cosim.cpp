@@ -60,26 +60,16 @@ std::optional<FieldDiff> diff_vertex(const sim::VertexFx& e, const sim::VertexFx
 }
 
 std::optional<FieldDiff> diff_counters(const sim::UnitCounters& e, const sim::UnitCounters& a, int n) {
-  auto num = [](const std::string& name, std::uint64_t x, std::uint64_t y) -> std::optional<FieldDiff> {
-    if (x != y) return FieldDiff{"counters." + name, std::to_string(x), std::to_string(y)};
-    return std::nullopt;
+  // Called every cycle: names are built only for a difference.
+  auto diff = [](const std::string& name, std::uint64_t x, std::uint64_t y) {
+    return FieldDiff{"counters." + name, std::to_string(x), std::to_string(y)};
   };
-  if (auto d = num("cycles", e.cycles, a.cycles)) return d;
-  if (auto d = num("triangles_in", e.triangles_in, a.triangles_in)) return d;
-  if (auto d = num("vertices_out", e.vertices_out, a.vertices_out)) return d;
+  for (const sim::CounterField& f : sim::kRunCounters)
+    if (e.*f.field != a.*f.field) return diff(f.name, e.*f.field, a.*f.field);
   for (int i = 0; i < n; ++i)
-    if (auto d = num("int_busy[" + std::to_string(i) + "]", e.int_busy[i], a.int_busy[i])) return d;
-  if (auto d = num("te_context_limited", e.te_context_limited, a.te_context_limited)) return d;
-  if (auto d = num("te_int_limited", e.te_int_limited, a.te_int_limited)) return d;
-  if (auto d = num("te_busy", e.te_busy, a.te_busy)) return d;
-  if (auto d = num("te_blocked_by_gpe", e.te_blocked_by_gpe, a.te_blocked_by_gpe)) return d;
-  if (auto d = num("te_starved_by_cpg", e.te_starved_by_cpg, a.te_starved_by_cpg)) return d;
-  if (auto d = num("te_idle", e.te_idle, a.te_idle)) return d;
-  if (auto d = num("te_pipeline", e.te_pipeline, a.te_pipeline)) return d;
-  if (auto d = num("cpg_busy", e.cpg_busy, a.cpg_busy)) return d;
-  if (auto d = num("cpg_blocked", e.cpg_blocked, a.cpg_blocked)) return d;
-  if (auto d = num("cpg_wait_gpe", e.cpg_wait_gpe, a.cpg_wait_gpe)) return d;
-  if (auto d = num("cpg_idle", e.cpg_idle, a.cpg_idle)) return d;
+    if (e.int_busy[i] != a.int_busy[i]) return diff("int_busy[" + std::to_string(i) + "]", e.int_busy[i], a.int_busy[i]);
+  for (const sim::CounterField& f : sim::kClassCounters)
+    if (e.*f.field != a.*f.field) return diff(f.name, e.*f.field, a.*f.field);
   return std::nullopt;
 }
 

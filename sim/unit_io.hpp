@@ -47,4 +47,29 @@ struct UnitCounters {
   bool operator==(const UnitCounters&) const = default;
 };
 
+// The scalar counters once, by name (the RTL's perf_<name>_o outputs, co-simulation reports),
+// in the order the co-simulation compares them; int_busy[0..N-1] comes after `vertices_out`.
+struct CounterField {
+  const char* name;
+  std::uint64_t UnitCounters::*field;
+};
+inline constexpr std::array<CounterField, 3> kRunCounters{{
+    {"cycles", &UnitCounters::cycles},
+    {"triangles_in", &UnitCounters::triangles_in},
+    {"vertices_out", &UnitCounters::vertices_out},
+}};
+inline constexpr std::array<CounterField, 11> kClassCounters{{
+    {"te_context_limited", &UnitCounters::te_context_limited},
+    {"te_int_limited", &UnitCounters::te_int_limited},
+    {"te_busy", &UnitCounters::te_busy},
+    {"te_blocked_by_gpe", &UnitCounters::te_blocked_by_gpe},
+    {"te_starved_by_cpg", &UnitCounters::te_starved_by_cpg},
+    {"te_idle", &UnitCounters::te_idle},
+    {"te_pipeline", &UnitCounters::te_pipeline},
+    {"cpg_busy", &UnitCounters::cpg_busy},
+    {"cpg_blocked", &UnitCounters::cpg_blocked},
+    {"cpg_wait_gpe", &UnitCounters::cpg_wait_gpe},
+    {"cpg_idle", &UnitCounters::cpg_idle},
+}};
+
 }  // namespace tessim::sim
