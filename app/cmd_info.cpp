@@ -6,9 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/commands.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
-#include "app/commands.hpp"
+#include "sim/host.hpp"
 
 namespace tessim::app {
 
@@ -35,6 +36,8 @@ void run_info(const InfoArgs& args) {
     j["triangles"] = stats.triangles;
     j["bbox"] = {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}};
     j["diagonal"] = stats.bbox.diagonal();
+    j["half_extent"] = sim::host_scaling(mesh).half_extent;  // unit coordinates x this = mesh units
+    j["edges"] = stats.edges;
     j["normals"] = mesh.normals_from_file ? "file" : "computed";
     j["degenerate_triangles"] = stats.degenerate_triangles;
     j["zero_length_edges"] = stats.zero_length_edges;

@@ -3,7 +3,10 @@
 // model/io/write_mesh.cpp.
 #include "model/mesh_io.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <utility>
+#include <vector>
 
 #include "model/io/import.hpp"
 #include "model/mesh_build.hpp"
@@ -29,6 +32,17 @@ MeshStats mesh_stats(const Mesh& mesh) {
     if (is_zero_area(p1, p2, p3)) ++stats.degenerate_triangles;  // the tessellator's test
     stats.zero_length_edges += (p1 == p2) + (p2 == p3) + (p3 == p1);
   }
+  // Welded, so equal positions are equal indices: an edge is an unordered pair of indices.
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * mesh.triangles.size());
+  for (const glm::uvec3& t : mesh.triangles) {
+    for (int i = 0; i < 3; ++i) {
+      const std::uint64_t a = t[i], b = t[(i + 1) % 3];
+      if (a != b) edges.push_back(std::min(a, b) << 32 | std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  stats.edges = static_cast<std::size_t>(std::unique(edges.begin(), edges.end()) - edges.begin());
   if (!mesh.normals_from_file) weighted_normals(mesh, &stats.normal_fallbacks);
   return stats;
 }

@@ -26,6 +26,7 @@ struct MeshStats {
   std::size_t triangles = 0;
   std::size_t degenerate_triangles = 0;  // zero area (repeated vertices, collinear points)
   std::size_t zero_length_edges = 0;  // triangle edges whose two ends coincide
+  std::size_t edges = 0;  // distinct edges between distinct vertices (shared edges count once)
   // Computed normals only: vertices where the area x angle weighted face normals sum to zero
   // (only zero-area triangles around them, or faces that cancel); load_mesh gives them +Z.
   std::size_t normal_fallbacks = 0;

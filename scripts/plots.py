@@ -591,14 +591,10 @@ def tables_extra(rows, out):
                   note=f"{workload(bm, 'tess_factor', 'normals', 'cpg_mapping', 'int_latency', 'te_contexts')}.")
 
 
-def arithmetic_bound(F, I, half_extent, diagonal):
-    """Position bound of docs/number-formats.md §5.1 (Euclidean, relative to the diagonal)."""
-    q = 2.0 ** -F
-    R = 2.0 ** I
-    G = F + 8
-    e_t = 0.5 + 1.5 * R * 2.0 ** (F - G)
-    e_c = 1.5 * e_t + 0.5 + 6 * R * 2.0 ** (F - G)
-    return math.sqrt(3) * (max(e_t, e_c) + 1.5) * q * half_extent / diagonal
+def arithmetic_bound(F, I, info):
+    """Position bound of docs/number-formats.md §5.1 (Euclidean, relative to the diagonal): the
+    bound in unit coordinates from `tessim schema`, scaled by the mesh's half-extent."""
+    return info["position_bound"][(I, F)] * info["half_extent"] / info["diagonal"]
 
 
 def fig_errors(rows, out, mesh_info):
@@ -635,8 +631,7 @@ def fig_errors(rows, out, mesh_info):
             axes[0][0].plot(F, [r["error.position_max"] for r in pts], marker="o", ms=3, color=color, ls=ls)
             axes[1][0].plot(F, [r["error.normal_angle_max"] for r in pts], marker="o", ms=3, color=color, ls=ls)
             if info and B == max(Bs_all):
-                axes[0][0].plot(F, [arithmetic_bound(f, pts[0]["coord_int_bits"], info["half_extent"],
-                                                     info["diagonal"]) for f in F], color=color, lw=0.8, ls=":")
+                axes[0][0].plot(F, [arithmetic_bound(f, pts[0]["coord_int_bits"], info) for f in F], color=color, lw=0.8, ls=":")
             add_rows(pts)
         # Right: barycentric bits B at the largest F.
         Fmax = max(distinct(wm, "coord_frac_bits"))
@@ -732,58 +727,33 @@ def bus_traffic(rows, out, topology):
 # --------------------------------------------------------------------------- main
 
 def mesh_info_reader(tessim):
+    """`tessim info --json` of a mesh (bounding box, diagonal, half-extent, welded vertices, edges
+    and triangles), with the schema's arithmetic position bounds by (coord_int_bits,
+    coord_frac_bits): nothing here re-derives what tessim computes."""
     import json
     import subprocess
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import sweep
     cache = {}
+    bounds = {}
 
     def info(mesh):
         if mesh in cache:
             return cache[mesh]
         try:
+            if not bounds:
+                for b in sweep.schema(str(tessim))["position_bound"]:
+                    bounds[(b["coord_int_bits"], b["coord_frac_bits"])] = b["units"]
             j = json.loads(subprocess.run([str(tessim), "info", str(mesh), "--json"], check=True,
                                           capture_output=True, text=True).stdout)
-            lo, hi = j["bbox"]["min"], j["bbox"]["max"]
-            j["half_extent"] = max(h - l for h, l in zip(hi, lo)) / 2
+            j["position_bound"] = bounds
             cache[mesh] = j
-        except (OSError, subprocess.CalledProcessError, ValueError, KeyError) as e:
+        except (OSError, subprocess.CalledProcessError, ValueError, KeyError, sweep.SpecError) as e:
             print(f"plots.py: tessim info {mesh}: {e}", file=sys.stderr)
             cache[mesh] = None
         return cache[mesh]
 
     return info
-
-
-def topology_reader(tessim):
-    """Welded vertices, edges and triangles of a mesh as tessim loads it (tessim tessellate -L 1
-    writes every triangle's corners exactly)."""
-    import subprocess
-    import tempfile
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    import numpy as np
-    import sweep
-    cache = {}
-
-    def topology(mesh):
-        if mesh in cache:
-            return cache[mesh]
-        try:
-            with tempfile.TemporaryDirectory() as tmp:
-                path = Path(tmp) / "corners.ply"
-                subprocess.run([str(tessim), "tessellate", str(mesh), "-L", "1", "-o", str(path)], check=True,
-                               capture_output=True)
-                corners = sweep.read_ply_vertices(path)[:, :3]
-            _, index = np.unique(corners, axis=0, return_inverse=True)
-            tri = index.reshape(-1, 3)
-            edges = np.sort(np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]]), axis=1)
-            edges = edges[edges[:, 0] != edges[:, 1]]  # zero-length edges add no points
-            cache[mesh] = {"vertices": int(index.max() + 1), "edges": int(len(np.unique(edges, axis=0))),
-                           "triangles": int(len(tri))}
-        except (OSError, subprocess.CalledProcessError, RuntimeError, ValueError) as e:
-            print(f"plots.py: topology of {mesh}: {e}", file=sys.stderr)
-            cache[mesh] = None
-        return cache[mesh]
-
-    return topology
 
 
 def main(argv):
@@ -812,7 +782,7 @@ def main(argv):
     fig_stall(rows, out)
     tables_extra(rows, out)
     fig_errors(rows, out, info)
-    bus_traffic(rows, out, topology_reader(args.tessim))
+    bus_traffic(rows, out, info)
     out.write_tables()
     for f in out.files:
         print(f"plots.py: wrote {f}", file=sys.stderr)

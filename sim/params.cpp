@@ -7,6 +7,7 @@
 
 #include "model/pattern.hpp"
 #include "sim/cpg.hpp"
+#include "sim/error_bound.hpp"
 #include "sim/gpe.hpp"
 #include "sim/int_ops.hpp"
 #include "sim/unit.hpp"
@@ -234,6 +235,20 @@ nlohmann::json schema_json() {
   const ParamSpec& ib = *find_param("coord_int_bits");
   const ParamSpec& fb = *find_param("coord_frac_bits");
   json cpg_cycles_json = json::object();
+  // The arithmetic position bound of each coordinate format (sim::position_error_budget,
+  // docs/number-formats.md §5.1), in unit coordinates: times the mesh's half-extent gives mesh
+  // units (tessim info --json prints half_extent).
+  json position_bound_json = json::array();
+  for (int i = static_cast<int>(ib.min); i <= static_cast<int>(ib.max); ++i) {
+    for (int f = static_cast<int>(fb.min); f <= static_cast<int>(fb.max); ++f) {
+      NumberFormat fmt = defaults.format;
+      fmt.coord_int_bits = i;
+      fmt.coord_frac_bits = f;
+      if (fmt.coord_width() > 32) continue;
+      position_bound_json.push_back(
+          {{"coord_int_bits", i}, {"coord_frac_bits", f}, {"units", position_error_budget(fmt).position_units}});
+    }
+  }
   for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
     json rows = json::array();
     for (int i = static_cast<int>(ib.min); i <= static_cast<int>(ib.max); ++i) {
@@ -256,6 +271,7 @@ nlohmann::json schema_json() {
       {"int_ops_per_mode", per_mode},
       {"statistics", stats},
       {"cpg_cycles", cpg_cycles_json},
+      {"position_bound", position_bound_json},
   };
 }
 

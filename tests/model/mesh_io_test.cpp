@@ -461,6 +461,9 @@ TEST(MeshStats, CountsOnAHandBuiltMesh) {
   EXPECT_EQ(stats.triangles, 4u);
   EXPECT_EQ(stats.degenerate_triangles, 3u);  // collinear, repeated position, single point
   EXPECT_EQ(stats.zero_length_edges, 1u + 3u);
+  // Distinct index pairs: 01 12 02 13 03 04 14 (01 counted once; 4 is not welded to 0 here;
+  // the single-point triangle has no edge between distinct vertices).
+  EXPECT_EQ(stats.edges, 7u);
   EXPECT_EQ(stats.normal_fallbacks, 0u);  // normals from a file never fall back
   EXPECT_EQ(stats.bbox.lo, glm::dvec3(0, 0, 0));
   EXPECT_EQ(stats.bbox.hi, glm::dvec3(2, 1, 0));

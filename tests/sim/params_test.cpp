@@ -18,6 +18,7 @@
 #include "app/config_flags.hpp"
 #include "sim/config.hpp"
 #include "sim/cpg.hpp"
+#include "sim/error_bound.hpp"
 #include "sim/int_ops.hpp"
 #include "sim/params.hpp"
 #include "tests/support/run_tessim.hpp"
@@ -282,6 +283,25 @@ TEST(Schema, CpgCyclesAreSimCpgCyclesAndIgnoreBaryBits) {
         f.bary_bits = b;
         EXPECT_EQ(r["cycles"].get<int>(), cpg_cycles(m, f));
       }
+    }
+  }
+}
+
+// The arithmetic position bound per coordinate format, which scripts/plots.py draws: the C++
+// derivation, for every valid format, independent of bary_bits.
+TEST(Schema, PositionBoundsArePositionErrorBudget) {
+  const json s = schema_json();
+  const json& rows = s["position_bound"];
+  EXPECT_GT(rows.size(), 100u);
+  for (const json& r : rows) {
+    NumberFormat f;
+    f.coord_int_bits = r["coord_int_bits"];
+    f.coord_frac_bits = r["coord_frac_bits"];
+    ASSERT_LE(f.coord_width(), 32);
+    EXPECT_GT(r["units"].get<double>(), 0.0);
+    for (int b : {7, 16, 20}) {
+      f.bary_bits = b;
+      EXPECT_EQ(r["units"].get<double>(), position_error_budget(f).position_units);
     }
   }
 }
