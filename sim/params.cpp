@@ -230,38 +230,32 @@ nlohmann::json schema_json() {
       {"doc", "docs/microarchitecture.md §10, docs/statistics.md"},
   };
 
-  // Cycles of the dedicated CPG per triangle (sim::cpg_cycles), for every valid coordinate
-  // format; they do not depend on bary_bits (tests/sim/params_test.cpp checks it).
+  // Per valid coordinate format (coordinate width <= 32), one row {coord_int_bits,
+  // coord_frac_bits, key: value(format)}.
   const ParamSpec& ib = *find_param("coord_int_bits");
   const ParamSpec& fb = *find_param("coord_frac_bits");
-  json cpg_cycles_json = json::object();
-  // The arithmetic position bound of each coordinate format (sim::position_error_budget,
-  // docs/number-formats.md §5.1), in unit coordinates: times the mesh's half-extent gives mesh
-  // units (tessim info --json prints half_extent).
-  json position_bound_json = json::array();
-  for (int i = static_cast<int>(ib.min); i <= static_cast<int>(ib.max); ++i) {
-    for (int f = static_cast<int>(fb.min); f <= static_cast<int>(fb.max); ++f) {
-      NumberFormat fmt = defaults.format;
-      fmt.coord_int_bits = i;
-      fmt.coord_frac_bits = f;
-      if (fmt.coord_width() > 32) continue;
-      position_bound_json.push_back(
-          {{"coord_int_bits", i}, {"coord_frac_bits", f}, {"units", position_error_budget(fmt).position_units}});
-    }
-  }
-  for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+  auto per_format = [&](const char* key, auto value) {
     json rows = json::array();
     for (int i = static_cast<int>(ib.min); i <= static_cast<int>(ib.max); ++i) {
       for (int f = static_cast<int>(fb.min); f <= static_cast<int>(fb.max); ++f) {
         NumberFormat fmt = defaults.format;
         fmt.coord_int_bits = i;
         fmt.coord_frac_bits = f;
-        if (fmt.coord_width() > 32) continue;
-        rows.push_back({{"coord_int_bits", i}, {"coord_frac_bits", f}, {"cycles", cpg_cycles(m, fmt)}});
+        if (fmt.coord_width() <= 32) rows.push_back({{"coord_int_bits", i}, {"coord_frac_bits", f}, {key, value(fmt)}});
       }
     }
-    cpg_cycles_json[std::string(to_string(m))] = rows;
-  }
+    return rows;
+  };
+  // Cycles of the dedicated CPG per triangle (sim::cpg_cycles); they do not depend on bary_bits
+  // (tests/sim/params_test.cpp checks it).
+  json cpg_cycles_json = json::object();
+  for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear})
+    cpg_cycles_json[std::string(to_string(m))] =
+        per_format("cycles", [m](const NumberFormat& fmt) { return cpg_cycles(m, fmt); });
+  // The arithmetic position bound (sim::position_error_budget, docs/number-formats.md §5.1) in
+  // unit coordinates: times the mesh's half-extent (tessim info --json) gives mesh units.
+  const json position_bound_json =
+      per_format("units", [](const NumberFormat& fmt) { return position_error_budget(fmt).position_units; });
 
   return {
       {"tessim_schema", 1},
