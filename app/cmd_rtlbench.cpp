@@ -13,8 +13,8 @@
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
+#include "sim/testbench.hpp"
 #include "app/commands.hpp"
-#include "sim/gpe.hpp"
 #include "sim/host.hpp"
 #include "sim/unit.hpp"
 
@@ -38,22 +38,12 @@ struct Timing {
 // Runs one implementation over the stream until the GPE has taken every vertex.
 template <typename Impl>
 Timing run_alone(Impl& impl, const std::vector<sim::TriangleFx>& stream, const sim::UnitConfig& cfg) {
-  std::uint64_t expected = 0;
-  for (const auto& t : stream) expected += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
-  sim::Gpe gpe(cfg);
-  std::size_t next = 0;
-  std::uint64_t received = 0, cycles = 0;
-  sim::UnitInputs in;
+  sim::Testbench tb(stream, cfg);
+  std::uint64_t cycles = 0;
   const std::clock_t c0 = std::clock();
   const auto t0 = std::chrono::steady_clock::now();
-  while (received < expected) {
-    const sim::GpeCycle g = gpe.tick(impl.vtx_valid(), false);
-    in.tri_valid = next < stream.size();
-    if (in.tri_valid) in.tri = stream[next];
-    in.vtx_ready = g.ready;
-    if (in.tri_valid && impl.tri_ready()) ++next;
-    if (g.accepted) ++received;
-    impl.tick(in);
+  while (!tb.done()) {
+    impl.tick(tb.inputs(impl));
     ++cycles;
   }
   Timing t;

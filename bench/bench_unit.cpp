@@ -7,9 +7,9 @@
 
 #include "model/mesh_io.hpp"
 #include "sim/config.hpp"
-#include "sim/gpe.hpp"
 #include "sim/host.hpp"
 #include "sim/simulate.hpp"
+#include "sim/testbench.hpp"
 #include "sim/unit.hpp"
 
 namespace {
@@ -43,23 +43,10 @@ void BM_UnitCycles(benchmark::State& state) {
   std::uint64_t cycles = 0, vertices = 0;
   for (auto _ : state) {
     Unit unit(cfg);
-    Gpe gpe(cfg);
-    UnitInputs in;
-    std::size_t next = 0;
-    const std::uint64_t total = stream.size() * 153;
-    std::uint64_t received = 0;
-    while (received < total) {
-      const GpeCycle g = gpe.tick(unit.vtx_valid(), unit.cpg_computing());
-      in.tri_valid = next < stream.size();
-      if (in.tri_valid) in.tri = stream[next];
-      in.vtx_ready = g.ready;
-      in.cpg_step = g.spare;
-      if (in.tri_valid && unit.tri_ready()) ++next;
-      received += g.accepted;
-      unit.tick(in);
-    }
+    Testbench tb(stream, cfg);
+    while (!tb.done()) unit.tick(tb.inputs(unit));
     cycles += unit.stats().cycles;
-    vertices += received;
+    vertices += tb.accepted();
   }
   state.counters["cycles/s"] = benchmark::Counter(static_cast<double>(cycles), benchmark::Counter::kIsRate);
   state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(vertices), benchmark::Counter::kIsRate);

@@ -13,6 +13,7 @@
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/error_bound.hpp"
 #include "sim/host.hpp"
+#include "sim/testbench.hpp"
 #include "sim/unit.hpp"
 
 namespace tessim::cosim {
@@ -190,7 +191,7 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   for (const auto& t : stream) run.expected_vertices += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
 
   sim::Unit model(opts.unit);
-  sim::Gpe gpe(opts.unit);
+  sim::Testbench tb(stream, opts.unit);
   rtl.reset();
   rtl.set_mode(opts.unit.normals);
   std::unique_ptr<ReferenceChecker> ref;
@@ -201,8 +202,7 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
     recent.push_back(std::move(s));
     while (recent.size() > static_cast<std::size_t>(std::max(opts.history, 0))) recent.pop_front();
   };
-  std::size_t next_tri = 0;
-  std::uint64_t received = 0, last_progress = 0;
+  std::uint64_t last_progress = 0;
   std::uint32_t last_patch = 0;
   std::vector<std::uint64_t> resets = opts.reset_at;
   std::sort(resets.begin(), resets.end());
@@ -232,9 +232,7 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
       ++next_reset;
       model.reset();
       rtl.reset();
-      gpe.reset();
-      next_tri = 0;
-      received = 0;
+      tb.reset();
       note("cycle " + std::to_string(cycle) + ": reset");
       if (ref) ref = std::make_unique<ReferenceChecker>(stream, opts.unit);
     }
@@ -268,25 +266,17 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
     }
 
     // 2. The environment: source and geometry engine, driven by the (agreeing) outputs.
-    const sim::GpeCycle g = gpe.tick(model.vtx_valid(), model.cpg_computing());
-    sim::UnitInputs in;
-    in.tri_valid = next_tri < stream.size();
-    if (in.tri_valid) in.tri = stream[next_tri];
-    in.vtx_ready = g.ready;
-    in.cpg_step = g.spare;
-
-    if (in.tri_valid && model.tri_ready()) {
+    const sim::UnitInputs& in = tb.inputs(model);
+    if (tb.pushed()) {
       note("cycle " + std::to_string(cycle) + ": triangle " + std::to_string(in.tri.id) + " in (L=" +
            std::to_string(in.tri.L) + ")");
-      ++next_tri;
       last_progress = cycle;
     }
-    if (g.accepted) {
+    if (tb.gpe_cycle().accepted) {
       const sim::VertexFx& v = model.vtx();
       last_patch = v.id;
       note("cycle " + std::to_string(cycle) + ": vertex out " + vertex_str(v));
       if (ref && v.id < stream.size()) ref->check(v, v.id);
-      ++received;
       last_progress = cycle;
     }
 
@@ -294,7 +284,7 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
     model.tick(in);
     rtl.tick(in);
 
-    if (!wave_from && received == run.expected_vertices) {
+    if (!wave_from && tb.accepted() == run.expected_vertices) {
       ++cycle;
       break;
     }
@@ -307,9 +297,9 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   }
 
   rep.cycles = cycle;
-  rep.triangles = next_tri;
-  rep.vertices = received;
-  rep.gpe = gpe.stats();
+  rep.triangles = tb.triangles_taken();
+  rep.vertices = tb.accepted();
+  rep.gpe = tb.gpe().stats();
   rep.model_counters = model_counters(model.stats());
   rep.rtl_counters = rtl.counters();
   if (ref) rep.reference = ref->result();

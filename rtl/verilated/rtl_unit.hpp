@@ -38,6 +38,8 @@ class RtlUnit {
   virtual bool tri_ready() const = 0;
   virtual bool vtx_valid() const = 0;
   virtual sim::VertexFx vtx() const = 0;  // meaningful only while vtx_valid()
+  // The RTL's CPG is dedicated: it never asks the geometry engine for spare cycles.
+  bool cpg_computing() const { return false; }
   virtual sim::UnitCounters counters() const = 0;
 
   // One clock cycle: drive the inputs, evaluate, rising edge, evaluate. UnitInputs::cpg_step
