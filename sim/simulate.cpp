@@ -10,6 +10,7 @@
 
 #include "model/pattern.hpp"
 #include "sim/analytic.hpp"
+#include "sim/testbench.hpp"
 
 namespace tessim::sim {
 
@@ -47,7 +48,7 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   r.scaling = host_scaling(mesh);
 
   Unit unit(cfg);
-  Gpe gpe(cfg);
+  BasicTestbench<MeshSource> tb(MeshSource(mesh, r.scaling, cfg.format, cfg.tess_factor), cfg);
   r.cpg_cycles = unit.cpg_cycles();
   const NumberFormat& fmt = cfg.format;
   const int L = cfg.tess_factor;
@@ -62,13 +63,6 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   }
   std::vector<CycleObserver*> observers = hooks.observers;
 
-  UnitInputs in;
-  std::size_t next_triangle = 0;
-  if (r.triangles > 0) {
-    in.tri = to_fixed(mesh, 0, r.scaling, fmt, L);
-    in.tri_valid = true;
-  }
-
   // Expected next vertex: the stream is checked as it goes (patch order, pattern order), so a
   // model bug shows up as an internal error instead of a wrong mesh.
   std::uint32_t expect_id = 0;
@@ -80,10 +74,8 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   bool interval_late = false;  // the GPE waited in this interval
 
   while (accepted < total) {
-    const bool tri_ready = unit.tri_ready();
-    const GpeCycle g = gpe.tick(unit.vtx_valid(), unit.cpg_computing());
-    in.vtx_ready = g.ready;
-    in.cpg_step = g.spare;
+    const UnitInputs& in = tb.inputs(unit);
+    const GpeCycle& g = tb.gpe_cycle();
     if (g.accepted) {
       const VertexFx& v = unit.vtx();
       if (v.id != expect_id || pattern_index(v.j, v.k, v.L) != expect_index || v.L != L ||
@@ -111,7 +103,6 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
       ++accepted;
       last_progress = cycle;
     }
-    const bool pushed = in.tri_valid && tri_ready;
     const bool gpe_waited = g.spare && accepted > 0;  // GPE ready, no vertex, after its first
     unit.tick(in);
     count_class(interval, unit.activity().te);
@@ -127,10 +118,6 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
     if (!observers.empty()) {
       std::erase_if(observers, [&](CycleObserver* o) { return !o->on_cycle(unit, g); });
     }
-    if (pushed) {
-      if (++next_triangle < r.triangles) in.tri = to_fixed(mesh, next_triangle, r.scaling, fmt, L);
-      else in.tri_valid = false;
-    }
     ++cycle;
     if (cycle - last_progress > watchdog)
       throw std::logic_error("cycle model: no vertex accepted for " + std::to_string(watchdog) +
@@ -138,7 +125,7 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   }
 
   r.unit = unit.stats();
-  r.gpe = gpe.stats();
+  r.gpe = tb.gpe().stats();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -1,46 +1,103 @@
-// The unit's environment, shared by the loops that drive a unit over a stream of triangles (the
-// co-simulation, `tessim rtlbench`, the microbenchmark): the triangles offered in order on
-// tri_valid/tri, and the geometry engine on vtx_ready/cpg_step. One cycle is
+// The unit's environment, shared by every loop that drives a unit (tessim sim, the
+// co-simulation, `tessim rtlbench`, the microbenchmark): a source of triangles offered in order
+// on tri_valid/tri, and the geometry engine on vtx_ready/cpg_step. One cycle is
 //     const UnitInputs& in = tb.inputs(dut);   // from the DUT's outputs (registered state)
 //     dut.tick(in);                             // the clock edge
 // for any DUT with tri_ready(), vtx_valid() and cpg_computing() (sim::Unit, rtl::RtlUnit).
-// `tessim sim` streams from a mesh instead of a vector (sim/simulate.cpp).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "model/mesh.hpp"
 #include "model/pattern.hpp"
 #include "sim/gpe.hpp"
+#include "sim/host.hpp"
 #include "sim/unit_io.hpp"
 
 namespace tessim::sim {
 
-class Testbench {
+// A source offers available() / front() / pop() and counts the vertices its triangles make.
+class VectorSource {
  public:
-  Testbench(const std::vector<TriangleFx>& stream, const UnitConfig& cfg) : stream_(stream), gpe_(cfg) {
-    for (const TriangleFx& t : stream) expected_ += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
+  explicit VectorSource(const std::vector<TriangleFx>& stream) : stream_(stream) {}
+  void rewind() { next_ = 0; }
+  bool available() const { return next_ < stream_.size(); }
+  const TriangleFx& front() const { return stream_[next_]; }
+  void pop() { ++next_; }
+  std::uint64_t vertices() const {
+    std::uint64_t n = 0;
+    for (const TriangleFx& t : stream_) n += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
+    return n;
   }
 
-  // Back to the start of the stream with a fresh geometry engine (a reset of the DUT).
+ private:
+  const std::vector<TriangleFx>& stream_;
+  std::size_t next_ = 0;
+};
+
+// The triangles of a mesh, scaled and quantized one at a time as they are offered (streaming:
+// nothing per triangle is held), all with factor L.
+class MeshSource {
+ public:
+  MeshSource(const Mesh& mesh, const HostScaling& scaling, const NumberFormat& format, int L)
+      : mesh_(mesh), scaling_(scaling), format_(format), L_(L) {
+    rewind();
+  }
+  void rewind() {
+    next_ = 0;
+    if (available()) current_ = to_fixed(mesh_, 0, scaling_, format_, L_);
+  }
+  bool available() const { return next_ < mesh_.triangle_count(); }
+  const TriangleFx& front() const { return current_; }
+  void pop() {
+    if (++next_ < mesh_.triangle_count()) current_ = to_fixed(mesh_, next_, scaling_, format_, L_);
+  }
+  std::uint64_t vertices() const {
+    return mesh_.triangle_count() * static_cast<std::uint64_t>(pattern_vertex_count(L_));
+  }
+
+ private:
+  const Mesh& mesh_;
+  HostScaling scaling_;
+  NumberFormat format_;
+  int L_;
+  std::size_t next_ = 0;
+  TriangleFx current_;
+};
+
+template <class Source>
+class BasicTestbench {
+ public:
+  BasicTestbench(Source source, const UnitConfig& cfg) : source_(std::move(source)), gpe_(cfg) {
+    expected_ = source_.vertices();
+    load();
+  }
+
+  // Back to the start of the source with a fresh geometry engine (a reset of the DUT).
   void reset() {
     gpe_.reset();
-    next_ = 0;
+    source_.rewind();
+    pushed_ = false;
+    taken_ = 0;
     accepted_ = 0;
+    load();
   }
 
   // The inputs of the cycle. The GPE steps on the DUT's outputs; a triangle offered while the
-  // DUT is ready is taken this cycle, so the next one is offered from the next cycle on.
+  // DUT is ready is taken at this cycle's edge, and the next one is offered from the next cycle.
   template <class Dut>
   const UnitInputs& inputs(const Dut& dut) {
+    if (pushed_) {
+      source_.pop();
+      load();
+    }
     cycle_ = gpe_.tick(dut.vtx_valid(), dut.cpg_computing());
-    in_.tri_valid = next_ < stream_.size();
-    if (in_.tri_valid) in_.tri = stream_[next_];
     in_.vtx_ready = cycle_.ready;
     in_.cpg_step = cycle_.spare;
     pushed_ = in_.tri_valid && dut.tri_ready();
-    if (pushed_) ++next_;
+    if (pushed_) ++taken_;
     if (cycle_.accepted) ++accepted_;
     return in_;
   }
@@ -48,20 +105,32 @@ class Testbench {
   const GpeCycle& gpe_cycle() const { return cycle_; }  // of the last inputs()
   bool pushed() const { return pushed_; }               // the last inputs() handed over a triangle
   const Gpe& gpe() const { return gpe_; }
-  std::size_t triangles_taken() const { return next_; }  // triangles the DUT took since reset
-  std::uint64_t accepted() const { return accepted_; }  // vertices the GPE took since reset
-  std::uint64_t expected() const { return expected_; }  // vertices of the whole stream
+  std::size_t triangles_taken() const { return taken_; }  // triangles the DUT took since reset
+  std::uint64_t accepted() const { return accepted_; }    // vertices the GPE took since reset
+  std::uint64_t expected() const { return expected_; }    // vertices of the whole source
   bool done() const { return accepted_ >= expected_; }
 
  private:
-  const std::vector<TriangleFx>& stream_;
+  void load() {
+    in_.tri_valid = source_.available();
+    if (in_.tri_valid) in_.tri = source_.front();
+  }
+
+  Source source_;
   Gpe gpe_;
   UnitInputs in_;
   GpeCycle cycle_;
-  std::size_t next_ = 0;
   bool pushed_ = false;
+  std::size_t taken_ = 0;
   std::uint64_t accepted_ = 0;
   std::uint64_t expected_ = 0;
+};
+
+// A stream held in memory (co-simulation, benchmarks).
+class Testbench : public BasicTestbench<VectorSource> {
+ public:
+  Testbench(const std::vector<TriangleFx>& stream, const UnitConfig& cfg)
+      : BasicTestbench<VectorSource>(VectorSource(stream), cfg) {}
 };
 
 }  // namespace tessim::sim
