@@ -93,12 +93,8 @@ RenderMesh pn_tessellated(const Mesh& mesh, int L, NormalMode mode) {
 void run_render(const RenderArgs& args) {
   // Validate everything before loading or computing anything.
   const glm::ivec2 size = parse_image_size(args.size, "--size");
-  if (args.factor < 1 || args.factor > kMaxTessFactor)
-    throw InputError("render", "-L", std::to_string(args.factor) + " is outside 1.." + std::to_string(kMaxTessFactor));
-  const auto mode = parse_normal_mode(args.normals);
-  if (!mode)
-    throw InputError("render", "--normals",
-                     "'" + args.normals + "' is not one of quadratic, reflect, linear, derivative");
+  check_tess_factor("render", args.factor);
+  const NormalMode mode = parse_normals_option("render", args.normals);
   const bool compare = !args.compare.empty();
   if (compare && args.compare != "flat")
     throw InputError("render", "--compare", "'" + args.compare + "' is not supported (only 'flat')");
@@ -124,7 +120,7 @@ void run_render(const RenderArgs& args) {
 
   std::vector<RenderMesh> panels;
   if (compare) panels.push_back(flat_shaded(mesh));
-  panels.push_back(pn_tessellated(mesh, args.factor, *mode));
+  panels.push_back(pn_tessellated(mesh, args.factor, mode));
 
   // One camera for all panels, framed on everything drawn (the PN surface bulges beyond the
   // input vertices).
@@ -159,7 +155,7 @@ void run_render(const RenderArgs& args) {
 
   std::printf("wrote %s: %dx%d, %zu input triangles, %zu PN triangles (L=%d, %s normals)%s\n",
               output.string().c_str(), total_width, size.y, mesh.triangles.size(),
-              panels.back().triangles.size(), args.factor, std::string(to_string(*mode)).c_str(),
+              panels.back().triangles.size(), args.factor, std::string(to_string(mode)).c_str(),
               compare ? ", left: flat-shaded input" : "");
 }
 

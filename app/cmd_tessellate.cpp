@@ -25,12 +25,8 @@ struct TessellateArgs {
 
 void run_tessellate(const TessellateArgs& args) {
   // Everything the command line decides is checked before the mesh is read or a file opened.
-  if (args.factor < 1 || args.factor > kMaxTessFactor)
-    throw InputError("tessellate", "-L", std::to_string(args.factor) + " is outside 1.." + std::to_string(kMaxTessFactor));
-  const auto mode = parse_normal_mode(args.normals);
-  if (!mode)
-    throw InputError("tessellate", "--normals",
-                     "'" + args.normals + "' is not one of quadratic, reflect, linear, derivative");
+  check_tess_factor("tessellate", args.factor);
+  const NormalMode mode = parse_normals_option("tessellate", args.normals);
   if (!is_supported_output(args.output))
     throw InputError(args.output, "output",
                      "unsupported extension '" + std::filesystem::path(args.output).extension().string() +
@@ -41,7 +37,7 @@ void run_tessellate(const TessellateArgs& args) {
   const std::uint64_t patches = mesh.triangle_count();
   MeshWriter writer(args.output, patches * static_cast<std::uint64_t>(pattern_vertex_count(L)),
                     patches * static_cast<std::uint64_t>(pattern_triangle_count(L)));
-  const TessellationSummary summary = tessellate_mesh(mesh, L, *mode, [&](const PatchView& patch) {
+  const TessellationSummary summary = tessellate_mesh(mesh, L, mode, [&](const PatchView& patch) {
     writer.add_patch(patch.L, patch.positions.data(), patch.normals.data());
   });
   writer.finish();
@@ -55,7 +51,7 @@ void run_tessellate(const TessellateArgs& args) {
   std::printf("%s: %" PRIu64 " patches, %" PRIu64 " vertices, %" PRIu64 " triangles, %" PRIu64
               " INT ops, %" PRIu64 " degenerate events (L=%d, %s normals)\n",
               args.output.c_str(), summary.patches, summary.vertices, summary.triangles, summary.int_ops,
-              summary.degenerate_triangles + summary.degenerate_edges, L, std::string(to_string(*mode)).c_str());
+              summary.degenerate_triangles + summary.degenerate_edges, L, std::string(to_string(mode)).c_str());
 }
 
 }  // namespace

@@ -3,9 +3,18 @@
 // non-zero exit status.
 #pragma once
 
+#include <string>
+
 #include <CLI/CLI.hpp>
 
+#include "model/normal_mode.hpp"
+
 namespace tessim::app {
+
+// Checks of options shared by the reference commands (tessellate, render): InputError naming
+// the command and the option. The cycle-model commands check theirs through sim/params.hpp.
+void check_tess_factor(const char* command, int factor);
+NormalMode parse_normals_option(const char* command, const std::string& text);
 
 void register_info(CLI::App& app);
 void register_tessellate(CLI::App& app);
