@@ -66,7 +66,7 @@ void run(const RtlBenchArgs& a) {
   std::printf("%4s %10s %16s %16s %10s\n", "N", "cycles", "model cycles/s", "RTL cycles/s", "model/RTL");
   for (int n : a.int_blocks) {
     auto rtl = rtl::make_rtl_unit("n" + std::to_string(n), 1);
-    sim::UnitConfig cfg = rtl->config();
+    sim::UnitConfig cfg = sim::with_hardware(rtl->config());
     cfg.tess_factor = a.tess_factor;
     cfg.gpe_cycles = a.gpe_cycles;
     cfg.validate("command line");

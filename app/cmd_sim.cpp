@@ -30,6 +30,7 @@ struct SimArgs {
   std::uint64_t trace_cycles = 20000;
   std::string output;
   bool schedule = false;
+  bool errors = false;
 };
 
 void run_sim(const SimArgs& a, const ConfigFlags& flags) {
@@ -42,6 +43,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   const int L = cfg.tess_factor;
 
   sim::SimHooks hooks;
+  hooks.measure_errors = a.errors;
   std::unique_ptr<MeshWriter> writer;
   if (!a.output.empty()) {
     writer = std::make_unique<MeshWriter>(
@@ -95,6 +97,9 @@ void register_sim(CLI::App& app) {
   sub->add_option("--trace-cycles", args->trace_cycles, "cycles recorded in the trace")->capture_default_str();
   sub->add_option("-o,--output", args->output, "write the tessellated mesh (.ply or .obj)");
   sub->add_flag("--schedule", args->schedule, "print the issue pattern of the first vertices");
+  sub->add_flag("--errors", args->errors,
+                "compare every vertex with the float reference: end to end against the mesh, and the "
+                "arithmetic alone against its derived bound (summary and --stats \"errors\")");
   sub->callback([args, flags] { run_sim(*args, *flags); });
 }
 

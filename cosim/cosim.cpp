@@ -7,171 +7,18 @@
 #include <memory>
 #include <sstream>
 
+#include "cosim/checkers.hpp"
 #include "model/error.hpp"
 #include "model/pattern.hpp"
-#include "model/pn.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/error_bound.hpp"
+#include "sim/dut.hpp"
 #include "sim/host.hpp"
+#include "sim/reference_check.hpp"
 #include "sim/testbench.hpp"
-#include "sim/unit.hpp"
 
 namespace tessim::cosim {
 
 namespace {
-
-std::string vec_str(const sim::FxVec& v) {
-  std::ostringstream os;
-  os << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
-  return os.str();
-}
-
-std::string vertex_str(const sim::VertexFx& x) {
-  std::ostringstream os;
-  os << "patch " << x.id << " (j,k)=(" << x.j << "," << x.k << ") L=" << x.L << " pos="
-     << vec_str(x.pos) << " nrm=" << vec_str(x.nrm) << " u=" << x.u << " v=" << x.v
-     << (x.last ? " last" : "") << (x.flags ? " flags=" + std::to_string(x.flags) : "");
-  return os.str();
-}
-
-// First field in which two vertices differ, with both values; empty when equal.
-struct FieldDiff {
-  std::string field, expected, actual;
-};
-std::optional<FieldDiff> diff_vertex(const sim::VertexFx& e, const sim::VertexFx& a) {
-  for (int c = 0; c < 3; ++c)
-    if (e.pos[c] != a.pos[c])
-      return FieldDiff{"vtx_pos[" + std::to_string(c) + "]", std::to_string(e.pos[c]), std::to_string(a.pos[c])};
-  for (int c = 0; c < 3; ++c)
-    if (e.nrm[c] != a.nrm[c])
-      return FieldDiff{"vtx_nrm[" + std::to_string(c) + "]", std::to_string(e.nrm[c]), std::to_string(a.nrm[c])};
-  auto num = [](const char* name, std::int64_t x, std::int64_t y) -> std::optional<FieldDiff> {
-    if (x != y) return FieldDiff{name, std::to_string(x), std::to_string(y)};
-    return std::nullopt;
-  };
-  if (auto d = num("vtx_u", e.u, a.u)) return d;
-  if (auto d = num("vtx_v", e.v, a.v)) return d;
-  if (auto d = num("vtx_j", e.j, a.j)) return d;
-  if (auto d = num("vtx_k", e.k, a.k)) return d;
-  if (auto d = num("vtx_l", e.L, a.L)) return d;
-  if (auto d = num("vtx_id", e.id, a.id)) return d;
-  if (auto d = num("vtx_last", e.last, a.last)) return d;
-  if (auto d = num("vtx_flags", e.flags, a.flags)) return d;
-  return std::nullopt;
-}
-
-std::optional<FieldDiff> diff_counters(const sim::UnitCounters& e, const sim::UnitCounters& a, int n) {
-  // Called every cycle: names are built only for a difference.
-  auto diff = [](const std::string& name, std::uint64_t x, std::uint64_t y) {
-    return FieldDiff{"counters." + name, std::to_string(x), std::to_string(y)};
-  };
-  for (const sim::CounterField& f : sim::kRunCounters)
-    if (e.*f.field != a.*f.field) return diff(f.name, e.*f.field, a.*f.field);
-  for (int i = 0; i < n; ++i)
-    if (e.int_busy[i] != a.int_busy[i]) return diff("int_busy[" + std::to_string(i) + "]", e.int_busy[i], a.int_busy[i]);
-  for (const sim::CounterField& f : sim::kClassCounters)
-    if (e.*f.field != a.*f.field) return diff(f.name, e.*f.field, a.*f.field);
-  return std::nullopt;
-}
-
-// Float reference of each patch, built once per triangle of the stream from the quantized
-// input (so the comparison measures the unit's arithmetic, not the input quantization).
-class ReferenceChecker {
- public:
-  ReferenceChecker(const std::vector<sim::TriangleFx>& stream, const sim::UnitConfig& cfg)
-      : stream_(stream), cfg_(cfg), budget_(sim::position_error_budget(cfg.format)) {
-    glm::dvec3 lo(1e300), hi(-1e300);
-    for (const auto& t : stream)
-      for (const auto& p : t.p) {
-        const glm::dvec3 x = sim::dequantize(p, cfg.format);
-        lo = glm::min(lo, x);
-        hi = glm::max(hi, x);
-      }
-    diagonal_ = stream.empty() ? 1.0 : std::max(glm::length(hi - lo), 1e-12);
-  }
-
-  void check(const sim::VertexFx& v, std::size_t stream_index) {
-    const sim::TriangleFx& tri = stream_[stream_index];
-    if (stream_index != cached_index_) {
-      PnInput in;
-      for (int i = 0; i < 3; ++i) {
-        in.p[i] = sim::dequantize(tri.p[i], cfg_.format);
-        in.n[i] = sim::dequantize(tri.n[i], cfg_.format);
-      }
-      patch_ = make_patch(in, cfg_.normals);
-      normal_bound_ = sim::normal_error_bound(tri, cfg_.normals, cfg_.format);
-      cached_index_ = stream_index;
-    }
-    const double scale = static_cast<double>(cfg_.format.bary_one());
-    const PnVertex ref = eval_bernstein(patch_, static_cast<double>(v.u) / scale, static_cast<double>(v.v) / scale);
-    const glm::dvec3 pos = sim::dequantize(v.pos, cfg_.format);
-    const glm::dvec3 nrm = sim::dequantize(v.nrm, cfg_.format);
-    const double pos_err = glm::length(pos - ref.position);
-    ++e_.vertices;
-    e_.max_position = std::max(e_.max_position, pos_err / diagonal_);
-    sum_pos2_ += (pos_err / diagonal_) * (pos_err / diagonal_);
-    bool beyond = pos_err > budget_.position_units + 1e-12;
-    std::string why = beyond ? "position error " + std::to_string(pos_err) + " > bound " +
-                                   std::to_string(budget_.position_units)
-                             : "";
-    const double len = glm::length(nrm);
-    const double angle_bound = sim::normal_angle_bound(normal_bound_, len);
-    if (angle_bound >= 0) {
-      const double c = std::clamp(glm::dot(nrm / len, glm::normalize(ref.normal)), -1.0, 1.0);
-      const double angle = std::acos(c);
-      e_.max_normal_angle = std::max(e_.max_normal_angle, angle);
-      sum_ang2_ += angle * angle;
-      ++normals_checked_;
-      if (angle > angle_bound + 1e-9) {
-        beyond = true;
-        why = "normal angle " + std::to_string(angle) + " rad > bound " + std::to_string(angle_bound);
-      }
-    }
-    if (beyond) {
-      if (e_.beyond_bound == 0) e_.worst = vertex_str(v) + ": " + why;
-      ++e_.beyond_bound;
-    }
-  }
-
-  ReferenceErrors result() const {
-    ReferenceErrors r = e_;
-    if (r.vertices) r.rms_position = std::sqrt(sum_pos2_ / static_cast<double>(r.vertices));
-    if (normals_checked_) r.rms_normal_angle = std::sqrt(sum_ang2_ / static_cast<double>(normals_checked_));
-    return r;
-  }
-
- private:
-  const std::vector<sim::TriangleFx>& stream_;
-  sim::UnitConfig cfg_;
-  sim::ErrorBudget budget_;
-  double diagonal_ = 1.0;
-  std::size_t cached_index_ = static_cast<std::size_t>(-1);
-  PnPatch patch_;
-  double normal_bound_ = 0;
-  ReferenceErrors e_;
-  double sum_pos2_ = 0, sum_ang2_ = 0;
-  std::uint64_t normals_checked_ = 0;
-};
-
-sim::UnitCounters model_counters(const sim::UnitStats& s) {
-  sim::UnitCounters c;
-  c.cycles = s.cycles;
-  c.triangles_in = s.triangles_in;
-  c.vertices_out = s.vertices_out;
-  for (std::size_t i = 0; i < s.int_blocks.size() && i < c.int_busy.size(); ++i) c.int_busy[i] = s.int_blocks[i].busy;
-  c.te_context_limited = s.te.context_limited;
-  c.te_int_limited = s.te.int_limited;
-  c.te_busy = s.te.busy;
-  c.te_blocked_by_gpe = s.te.blocked_by_gpe;
-  c.te_starved_by_cpg = s.te.starved_by_cpg;
-  c.te_idle = s.te.idle;
-  c.te_pipeline = s.te.pipeline;
-  c.cpg_busy = s.cpg.busy;
-  c.cpg_blocked = s.cpg.blocked;
-  c.cpg_wait_gpe = s.cpg.wait_gpe;
-  c.cpg_idle = s.cpg.idle;
-  return c;
-}
 
 // The lock-step loop, ending at the end of the stream, at the first divergence or before cycle
 // `stop_at`. With `wave_from` set it is the replay of a failing run: outputs are not compared
@@ -190,19 +37,31 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   rep.seed = opts.seed;
   for (const auto& t : stream) run.expected_vertices += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
 
-  sim::Unit model(opts.unit);
+  sim::ModelDut model(opts.unit);
+  sim::Dut& expected = model;  // the reference implementation
+  sim::Dut& actual = rtl;      // the implementation under test
   sim::Testbench tb(stream, opts.unit);
-  rtl.reset();
+  actual.reset();
   rtl.set_mode(opts.unit.normals);
-  std::unique_ptr<ReferenceChecker> ref;
-  if (opts.check_reference && !wave_from) ref = std::make_unique<ReferenceChecker>(stream, opts.unit);
+
+  // The checkers (cosim/checkers.hpp). A replay of a failing run only records the waveform.
+  const bool checking = !wave_from.has_value();
+  const OutputChecker outputs;
+  const CounterChecker counters(opts.unit.int_blocks);
+  ProgressChecker progress(opts.hang_cycles);
+  const double diagonal = sim::ArithmeticCheck::diagonal_of(stream, opts.unit.format);
+  auto make_reference = [&] {
+    return std::make_unique<sim::ArithmeticCheck>([&stream](std::uint32_t id) { return stream[id]; }, diagonal,
+                                                  opts.unit);
+  };
+  std::unique_ptr<sim::ArithmeticCheck> reference;
+  if (opts.check_reference && checking) reference = make_reference();
 
   std::deque<std::string> recent;
   auto note = [&](std::string s) {
     recent.push_back(std::move(s));
     while (recent.size() > static_cast<std::size_t>(std::max(opts.history, 0))) recent.pop_front();
   };
-  std::uint64_t last_progress = 0;
   std::uint32_t last_patch = 0;
   std::vector<std::uint64_t> resets = opts.reset_at;
   std::sort(resets.begin(), resets.end());
@@ -210,12 +69,12 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   std::uint64_t cycle = 0;
   bool stopped_early = false;  // at stop_at: the state of that cycle is outside the window
 
-  auto diverge = [&](const std::string& field, const std::string& e, const std::string& a) {
+  auto diverge = [&](const Mismatch& m) {
     Divergence d;
     d.cycle = cycle;
-    d.field = field;
-    d.expected = e;
-    d.actual = a;
+    d.field = m.field;
+    d.expected = m.expected;
+    d.actual = m.actual;
     d.triangle = last_patch;
     d.recent.assign(recent.begin(), recent.end());
     rep.divergence = d;
@@ -230,68 +89,52 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
     if (next_reset < resets.size() && cycle == resets[next_reset]) {
       // Mid-stream reset of both implementations: the stream starts again from the beginning.
       ++next_reset;
-      model.reset();
-      rtl.reset();
+      expected.reset();
+      actual.reset();
       tb.reset();
       note("cycle " + std::to_string(cycle) + ": reset");
-      if (ref) ref = std::make_unique<ReferenceChecker>(stream, opts.unit);
+      if (reference) reference = make_reference();
     }
 
-    // 1. Outputs of this cycle (registered state only) must agree.
-    if (!wave_from) {
-      if (model.tri_ready() != rtl.tri_ready()) {
-        diverge("tri_ready", std::to_string(model.tri_ready()), std::to_string(rtl.tri_ready()));
+    // 1. Outputs of this cycle (registered state only) must agree. The performance counters are
+    // outputs too: comparing them every cycle finds a fault that changes the unit's internal
+    // timing before it reaches the vertex stream.
+    if (checking) {
+      std::optional<Mismatch> m = outputs.check(expected, actual);
+      if (!m) m = counters.check(expected.counters(), actual.counters());
+      if (m) {
+        if (expected.vtx_valid()) last_patch = expected.vtx().id;
+        diverge(*m);
         break;
-      }
-      if (model.vtx_valid() != rtl.vtx_valid()) {
-        diverge("vtx_valid", std::to_string(model.vtx_valid()), std::to_string(rtl.vtx_valid()));
-        if (model.vtx_valid()) last_patch = model.vtx().id;
-        break;
-      }
-      // The performance counters are outputs too: comparing them every cycle finds a fault
-      // that changes the unit's internal timing before it reaches the vertex stream.
-      if (auto d = diff_counters(model_counters(model.stats()), rtl.counters(), opts.unit.int_blocks)) {
-        diverge(d->field, d->expected, d->actual);
-        break;
-      }
-      if (model.vtx_valid()) {
-        const sim::VertexFx actual = rtl.vtx();
-        if (auto d = diff_vertex(model.vtx(), actual)) {
-          last_patch = model.vtx().id;
-          diverge(d->field, d->expected + "  [" + vertex_str(model.vtx()) + "]",
-                  d->actual + "  [" + vertex_str(actual) + "]");
-          break;
-        }
       }
     }
 
     // 2. The environment: source and geometry engine, driven by the (agreeing) outputs.
-    const sim::UnitInputs& in = tb.inputs(model);
+    const sim::UnitInputs& in = tb.inputs(expected);
     if (tb.pushed()) {
       note("cycle " + std::to_string(cycle) + ": triangle " + std::to_string(in.tri.id) + " in (L=" +
            std::to_string(in.tri.L) + ")");
-      last_progress = cycle;
+      progress.transfer(cycle);
     }
     if (tb.gpe_cycle().accepted) {
-      const sim::VertexFx& v = model.vtx();
+      const sim::VertexFx v = expected.vtx();
       last_patch = v.id;
-      note("cycle " + std::to_string(cycle) + ": vertex out " + vertex_str(v));
-      if (ref && v.id < stream.size()) ref->check(v, v.id);
-      last_progress = cycle;
+      note("cycle " + std::to_string(cycle) + ": vertex out " + sim::describe(v));
+      if (reference && v.id < stream.size()) reference->check(v);
+      progress.transfer(cycle);
     }
 
     // 3. The clock edge, for both.
-    model.tick(in);
-    rtl.tick(in);
+    expected.tick(in);
+    actual.tick(in);
 
-    if (!wave_from && tb.accepted() == run.expected_vertices) {
+    if (checking && tb.accepted() == run.expected_vertices) {
       ++cycle;
       break;
     }
-    if (!wave_from && cycle - last_progress > opts.hang_cycles) {
+    if (checking && progress.hung(cycle)) {
       rep.hang = true;
-      diverge("progress", "a transfer within " + std::to_string(opts.hang_cycles) + " cycles",
-              "none (hang)");
+      diverge({"progress", "a transfer within " + std::to_string(progress.limit()) + " cycles", "none (hang)"});
       break;
     }
   }
@@ -300,12 +143,12 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   rep.triangles = tb.triangles_taken();
   rep.vertices = tb.accepted();
   rep.gpe = tb.gpe().stats();
-  rep.model_counters = model_counters(model.stats());
-  rep.rtl_counters = rtl.counters();
-  if (ref) rep.reference = ref->result();
-  if (!rep.divergence && !wave_from && !stopped_early) {
-    if (auto d = diff_counters(rep.model_counters, rep.rtl_counters, opts.unit.int_blocks)) {
-      diverge(d->field, d->expected, d->actual);
+  rep.model_counters = expected.counters();
+  rep.rtl_counters = actual.counters();
+  if (reference) rep.reference = reference->result();
+  if (!rep.divergence && checking && !stopped_early) {
+    if (auto m = counters.check(rep.model_counters, rep.rtl_counters)) {
+      diverge(*m);
     } else {
       rep.counters_match = true;
     }
@@ -378,10 +221,11 @@ std::string format_report(const CosimReport& r, const CosimOptions& o) {
     os << "  counters: " << (r.counters_match ? "identical" : "DIFFER") << " (cycles " << r.rtl_counters.cycles
        << ", TE busy " << r.rtl_counters.te_busy << ", CPG busy " << r.rtl_counters.cpg_busy << ")\n";
   }
-  if (r.reference.vertices) {
-    os << "  vs float reference: max position error " << r.reference.max_position << " of the diagonal (rms "
-       << r.reference.rms_position << "), max normal angle " << r.reference.max_normal_angle * 180.0 / M_PI
-       << " deg (rms " << r.reference.rms_normal_angle * 180.0 / M_PI << ")";
+  if (r.reference.stats.vertices) {
+    const sim::ErrorStats& e = r.reference.stats;
+    os << "  vs float reference: max position error " << e.position_max << " of the diagonal (rms "
+       << e.position_rms << "), max normal angle " << e.normal_angle_max * 180.0 / M_PI << " deg (rms "
+       << e.normal_angle_rms * 180.0 / M_PI << ")";
     os << (r.reference.beyond_bound ? ", " + std::to_string(r.reference.beyond_bound) + " beyond bound: " + r.reference.worst
                                     : ", all within the derived bound")
        << "\n";

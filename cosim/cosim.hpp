@@ -15,6 +15,7 @@
 #include "sim/config.hpp"
 #include "sim/cpg.hpp"
 #include "sim/gpe.hpp"
+#include "sim/reference_check.hpp"
 #include "sim/unit_io.hpp"
 
 namespace tessim::cosim {
@@ -40,16 +41,6 @@ struct Divergence {
   std::vector<std::string> recent;  // the last transactions before it, oldest first
 };
 
-// Error of the unit against the float reference (positions relative to the bounding-box
-// diagonal of the stream, normals as angles in radians).
-struct ReferenceErrors {
-  std::uint64_t vertices = 0;
-  double max_position = 0.0, rms_position = 0.0;
-  double max_normal_angle = 0.0, rms_normal_angle = 0.0;
-  std::uint64_t beyond_bound = 0;  // vertices outside the derived bound
-  std::string worst;               // description of the worst vertex beyond the bound
-};
-
 struct CosimReport {
   bool passed = false;
   std::string variant;
@@ -62,7 +53,7 @@ struct CosimReport {
   sim::UnitCounters model_counters;
   sim::UnitCounters rtl_counters;
   sim::GpeStats gpe;
-  ReferenceErrors reference;
+  sim::ArithmeticErrors reference;  // every accepted vertex against the float reference
   std::filesystem::path wave;      // written waveform, if any
   bool hang = false;
 };

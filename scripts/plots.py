@@ -138,8 +138,7 @@ def fmt(x, digits=3):
     return str(x)
 
 
-SYMBOLS = {"tess_factor": "L", "gpe_cycles": "K", "int_blocks": "N", "int_latency": "Λ",
-           "te_contexts": "V", "coord_frac_bits": "F", "bary_bits": "B"}
+SYMBOLS = {}  # parameter key -> symbol of docs/microarchitecture.md, from `tessim schema` (main)
 
 
 def workload(rows, *keys):
@@ -772,6 +771,13 @@ def main(argv):
     except ValueError:
         source = args.results
     out = Output(args.out, source)
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import sweep
+    try:
+        SYMBOLS.update({p["key"]: p["symbol"] for p in sweep.schema(args.tessim)["parameters"] if p["symbol"]})
+    except (OSError, sweep.SpecError) as e:
+        print(f"plots.py: error: tessim schema: {e}", file=sys.stderr)
+        return 2
     info = mesh_info_reader(args.tessim)
     fig_throughput_vs_n(rows, out)
     fig_utilisation_vs_n(rows, out)

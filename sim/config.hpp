@@ -1,5 +1,6 @@
-// Every parameter of the unit and its environment, in one type. JSON config files and the
-// command line both land here; validate() is the single place where ranges are checked.
+// Every parameter of the unit, its environment and the workload, in three parts joined in one
+// type. JSON config files and the command line both land here; validate() is the single place
+// where ranges are checked.
 // sim/params.hpp describes every field (key, flag, range, default, ...); README.md
 // (Configuration files) lists them.
 #pragma once
@@ -20,7 +21,9 @@ enum class CpgMapping {
   Gpe,        // CPG runs on the geometry engine's spare cycles (Chung & Kim)
 };
 
-struct UnitConfig {
+// What a chip is: a different value is a different RTL build (rtl/tess_pkg.sv parameters) or a
+// different unit. Blocks of the unit are built from this part only.
+struct HardwareConfig {
   NumberFormat format;
   int int_blocks = 2;        // N: INT blocks in the TE
   int int_latency = 1;       // cycles from issue to result visible to a dependent operation
@@ -28,17 +31,43 @@ struct UnitConfig {
   int tri_fifo_depth = 2;    // input triangle FIFO in front of the CPG
   int vtx_fifo_depth = 2;    // output vertex FIFO between the TE and the geometry engine
   CpgMapping cpg_mapping = CpgMapping::Dedicated;
-  int cpg_gpe_cycles = 64;   // geometry-engine cycles CPG needs per triangle when mapped there
-  NormalMode normals = NormalMode::Quadratic;
-  int tess_factor = 4;       // L, uniform for every triangle of a run
+  bool operator==(const HardwareConfig&) const = default;
+};
+
+// The geometry engine around the unit (sim/gpe.hpp) and its random stalls.
+struct EnvironmentConfig {
   int gpe_cycles = 8;        // K: the geometry engine accepts at most one vertex every K cycles
   double gpe_stall_prob = 0.0;  // chance that a ready geometry engine stalls a cycle anyway
   std::uint64_t seed = 1;    // seeds the geometry engine's random stalls
+  int cpg_gpe_cycles = 64;   // geometry-engine cycles CPG needs per triangle when mapped there
+  bool operator==(const EnvironmentConfig&) const = default;
+};
+
+// What a run asks of the unit: the normal mode (the unit's static mode_i input) and the factor
+// the host attaches to every triangle (the unit itself takes L per triangle).
+struct WorkloadConfig {
+  NormalMode normals = NormalMode::Quadratic;
+  int tess_factor = 4;       // L, uniform for every triangle of a run
+  bool operator==(const WorkloadConfig&) const = default;
+};
+
+// The three parts together: what a config file, the command line and a stats file hold (one
+// flat JSON object; sim/params.hpp gives each key its part).
+struct UnitConfig : HardwareConfig, EnvironmentConfig, WorkloadConfig {
+  const HardwareConfig& hardware() const { return *this; }
+  const EnvironmentConfig& environment() const { return *this; }
+  const WorkloadConfig& workload() const { return *this; }
 
   // Throws InputError(source, key, reason) on the first value out of range.
   void validate(const std::string& source = "configuration") const;
   bool operator==(const UnitConfig&) const = default;
 };
+
+// `rest` with its hardware part replaced by `hw` (an RTL build's hardware, the run's rest).
+inline UnitConfig with_hardware(const HardwareConfig& hw, UnitConfig rest = {}) {
+  static_cast<HardwareConfig&>(rest) = hw;
+  return rest;
+}
 
 // JSON: an object whose keys are the parameters of sim/params.hpp (format fields flattened:
 // coord_int_bits, coord_frac_bits, bary_bits; enums as strings). Unknown keys, wrong types

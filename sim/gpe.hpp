@@ -3,6 +3,7 @@
 // cycle model and, in co-simulation, of the Verilated RTL, so both see identical backpressure.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "sim/config.hpp"
@@ -28,6 +29,8 @@ class SplitMix64 {
 
 // Per-cycle classes of the GPE (doc §10), in priority order.
 enum class GpeClass : std::uint8_t { Busy, Stalled, Cpg, Starved };
+inline constexpr std::array<GpeClass, 4> kGpeClasses{GpeClass::Busy, GpeClass::Stalled, GpeClass::Cpg,
+                                                     GpeClass::Starved};
 const char* to_string(GpeClass c);
 
 struct GpeStats {
@@ -51,7 +54,7 @@ struct GpeCycle {
 class Gpe {
  public:
   Gpe(int cycles_per_vertex, double stall_prob, std::uint64_t seed);
-  explicit Gpe(const UnitConfig& cfg) : Gpe(cfg.gpe_cycles, cfg.gpe_stall_prob, cfg.seed) {}
+  explicit Gpe(const EnvironmentConfig& cfg) : Gpe(cfg.gpe_cycles, cfg.gpe_stall_prob, cfg.seed) {}
 
   void reset();  // back to the state after construction (generator re-seeded, stats cleared)
 

@@ -127,6 +127,13 @@ const ParamSpec* find_param(std::string_view key) {
   return nullptr;
 }
 
+const ParamSpec* find_rtl_param(std::string_view rtl_name) {
+  for (const ParamSpec& p : kParams) {
+    if (p.rtl && rtl_name == p.rtl) return &p;
+  }
+  return nullptr;
+}
+
 std::string range_text(const ParamSpec& p) {
   switch (p.type) {
     case ParamType::Int:
@@ -220,12 +227,20 @@ nlohmann::json schema_json() {
 
   // Statistics counters: per run, then the classes of each block (each class set sums to cycles).
   json te = json::array(), cpg = json::array(), gpe = json::array();
-  for (auto c : {TeClass::Busy, TeClass::BlockedByGpe, TeClass::StarvedByCpg, TeClass::Idle, TeClass::Pipeline})
-    te.push_back(to_string(c));
-  for (auto c : {CpgClass::Busy, CpgClass::Blocked, CpgClass::WaitGpe, CpgClass::Idle}) cpg.push_back(to_string(c));
-  for (auto c : {GpeClass::Busy, GpeClass::Stalled, GpeClass::Cpg, GpeClass::Starved}) gpe.push_back(to_string(c));
+  for (TeClass c : kTeClasses) te.push_back(to_string(c));
+  for (CpgClass c : kCpgClasses) cpg.push_back(to_string(c));
+  for (GpeClass c : kGpeClasses) gpe.push_back(to_string(c));
+  json per_run = json::array(), counters = json::array(), outputs = json::array();
+  for (const CounterField& f : kRunCounters) per_run.push_back(f.name);
+  // The RTL's perf_*_o counters in the order the co-simulation compares them.
+  for (const CounterField& f : kRunCounters) counters.push_back(f.name);
+  counters.push_back("int_busy[0..N-1]");
+  for (const CounterField& f : kClassCounters) counters.push_back(f.name);
+  for (const VertexField& f : kVertexFields) outputs.push_back({{"port", std::string(f.name) + "_o"}, {"components", f.count}});
   json stats = {
-      {"per_run", {"cycles", "triangles_in", "vertices_out"}},
+      {"per_run", per_run},
+      {"counters", counters},
+      {"vertex_outputs", outputs},
       {"classes", {{"int_block", {"busy", "idle"}}, {"te", te}, {"cpg", cpg}, {"gpe", gpe}}},
       {"doc", "docs/microarchitecture.md §10, docs/statistics.md"},
   };

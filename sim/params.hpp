@@ -48,6 +48,7 @@ struct ParamSpec {
 // FIFOs).
 std::span<const ParamSpec> unit_params();
 const ParamSpec* find_param(std::string_view key);  // nullptr if unknown
+const ParamSpec* find_rtl_param(std::string_view rtl_name);  // by tess_unit parameter name
 
 // "1..32", "0..0.99", "quadratic, reflect, linear, derivative", "0..2^64-1".
 std::string range_text(const ParamSpec& p);

@@ -62,6 +62,12 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
     patch_nrm.resize(static_cast<std::size_t>(patch_vertices));
   }
   std::vector<CycleObserver*> observers = hooks.observers;
+  std::optional<MeshErrors> mesh_errors;
+  std::optional<ArithmeticCheck> arithmetic;
+  if (hooks.measure_errors) {
+    mesh_errors.emplace(mesh, r.scaling, cfg);
+    arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg));
+  }
 
   // Expected next vertex: the stream is checked as it goes (patch order, pattern order), so a
   // model bug shows up as an internal error instead of a wrong mesh.
@@ -89,6 +95,10 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
       }
       if (v.nrm[0] == 0 && v.nrm[1] == 0 && v.nrm[2] == 0) ++r.zero_normals;
       if (hooks.on_vertex) hooks.on_vertex(v);
+      if (mesh_errors) {
+        mesh_errors->add(v);
+        arithmetic->check(v);
+      }
       if (hooks.on_patch) {
         patch_pos[static_cast<std::size_t>(expect_index)] = position_from_fixed(v.pos, r.scaling, fmt);
         patch_nrm[static_cast<std::size_t>(expect_index)] = normal_from_fixed(v.nrm, fmt);
@@ -126,6 +136,7 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
 
   r.unit = unit.stats();
   r.gpe = tb.gpe().stats();
+  if (mesh_errors) r.errors = SimErrors{mesh_errors->result(), arithmetic->result()};
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -204,7 +215,7 @@ nlohmann::json stats_json(const SimResult& r) {
     blocks.push_back({{"busy", b.busy}, {"idle", b.idle}, {"utilisation", ratio(b.busy, u.cycles)}});
     busy_total += b.busy;
   }
-  return {
+  json j = {
       {"mesh", r.mesh},
       {"triangles", r.triangles},
       {"config", to_json(r.config)},
@@ -238,6 +249,11 @@ nlohmann::json stats_json(const SimResult& r) {
       {"analytic", analytic_json(predict(r.config, r.cpg_cycles), r.config, r.triangles)},
       {"wall_seconds", r.wall_seconds},
   };
+  if (r.errors) {
+    j["errors"] = to_json(r.errors->mesh);
+    j["errors"]["arithmetic"] = to_json(r.errors->arithmetic);
+  }
+  return j;
 }
 
 std::string summary(const SimResult& r) {
@@ -283,6 +299,18 @@ std::string summary(const SimResult& r) {
     << percent(w.context_limited, gw) << "  int_limited " << percent(w.int_limited, gw) << "  starved_by_cpg "
     << percent(w.starved_by_cpg, gw) << "  busy " << percent(w.busy, gw) << "  other "
     << percent(w.pipeline + w.idle + w.blocked_by_gpe, gw) << "\n";
+  if (r.errors) {
+    const ErrorStats& m = r.errors->mesh;
+    const ArithmeticErrors& a = r.errors->arithmetic;
+    std::snprintf(buf, sizeof buf,
+                  "errors   vs the mesh's float reference: position max %.3g rms %.3g of the diagonal, normal max "
+                  "%.3g rms %.3g rad\n         arithmetic alone: position max %.3g of the diagonal, normal max %.3g "
+                  "rad, %llu vertices beyond the derived bound\n",
+                  m.position_max, m.position_rms, m.normal_angle_max, m.normal_angle_rms, a.stats.position_max,
+                  a.stats.normal_angle_max, static_cast<unsigned long long>(a.beyond_bound));
+    s << buf;
+    if (a.beyond_bound) s << "         first beyond the bound: " << a.worst << "\n";
+  }
   if (r.degenerate_patches > 0 || r.zero_normals > 0)
     s << "warning  " << r.degenerate_patches << " patches hit a zero divisor (zero-length edge or "
       << "vanishing mid-edge normal), " << r.zero_normals << " output normals vanished\n";

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "sim/config.hpp"
 #include "sim/gpe.hpp"
 #include "sim/host.hpp"
+#include "sim/reference_check.hpp"
 #include "sim/unit.hpp"
 
 namespace tessim::sim {
@@ -40,6 +42,14 @@ struct SimHooks {
   std::function<void(const VertexFx&)> on_vertex;  // every vertex the GPE accepts, in order
   std::function<void(const PatchOut&)> on_patch;   // every patch once its last vertex is accepted
   std::vector<CycleObserver*> observers;
+  bool measure_errors = false;  // every vertex against the float reference (SimResult::errors)
+};
+
+// The unit's output against the float64 reference (sim/reference_check.hpp): end to end against
+// the mesh as given, and the arithmetic alone against the derived bound.
+struct SimErrors {
+  ErrorStats mesh;
+  ArithmeticErrors arithmetic;
 };
 
 struct SimResult {
@@ -59,12 +69,14 @@ struct SimResult {
   std::uint64_t zero_normals = 0;        // output vertices whose normal vanished
   double wall_seconds = 0.0;
   HostScaling scaling;
+  std::optional<SimErrors> errors;       // with SimHooks::measure_errors
 };
 
 // Runs every triangle of `mesh` through the unit with a uniform factor cfg.tess_factor until
 // the GPE has accepted the last vertex. cfg must have passed validate(). Throws InputError for
 // a mesh the host cannot convert (check_convertible) or when a patch saturates (the widths
-// cannot hold the mesh).
+// cannot hold the mesh). A vertex beyond the arithmetic error bound is reported in
+// SimResult::errors, not thrown: it is a finding about the widths, not bad input.
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks = {});
 
 // Figures derived from the statistics (docs/microarchitecture.md §10).

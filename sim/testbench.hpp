@@ -70,7 +70,7 @@ class MeshSource {
 template <class Source>
 class BasicTestbench {
  public:
-  BasicTestbench(Source source, const UnitConfig& cfg) : source_(std::move(source)), gpe_(cfg) {
+  BasicTestbench(Source source, const EnvironmentConfig& env) : source_(std::move(source)), gpe_(env) {
     expected_ = source_.vertices();
     load();
   }
@@ -129,8 +129,8 @@ class BasicTestbench {
 // A stream held in memory (co-simulation, benchmarks).
 class Testbench : public BasicTestbench<VectorSource> {
  public:
-  Testbench(const std::vector<TriangleFx>& stream, const UnitConfig& cfg)
-      : BasicTestbench<VectorSource>(VectorSource(stream), cfg) {}
+  Testbench(const std::vector<TriangleFx>& stream, const EnvironmentConfig& env)
+      : BasicTestbench<VectorSource>(VectorSource(stream), env) {}
 };
 
 }  // namespace tessim::sim

@@ -21,8 +21,8 @@ namespace {
   throw std::invalid_argument(msg);
 }
 
-const UnitConfig& checked(const UnitConfig& cfg) {
-  if (!hardware_supports(cfg.normals)) throw std::invalid_argument("Unit: normal mode not implemented by the unit");
+const HardwareConfig& checked(const HardwareConfig& cfg, NormalMode normals) {
+  if (!hardware_supports(normals)) throw std::invalid_argument("Unit: normal mode not implemented by the unit");
   if (cfg.int_blocks < 1 || cfg.int_latency < 1 || cfg.te_contexts < 1 || cfg.tri_fifo_depth < 1 ||
       cfg.vtx_fifo_depth < 1 || cfg.te_contexts > 255)
     throw std::invalid_argument("Unit: configuration not validated");
@@ -31,17 +31,17 @@ const UnitConfig& checked(const UnitConfig& cfg) {
 
 // Dedicated: accept, C - 1 compute cycles, write (doc §5). GPE mapping: the counter is loaded
 // with C so that the CPG consumes exactly C spare GPE cycles per triangle.
-int cpg_counter_load(const UnitConfig& cfg) {
-  return cfg.cpg_mapping == CpgMapping::Gpe ? cfg.cpg_gpe_cycles : cpg_cycles(cfg.normals, cfg.format);
+int cpg_counter_load(const HardwareConfig& cfg, NormalMode normals, int cpg_gpe_cycles) {
+  return cfg.cpg_mapping == CpgMapping::Gpe ? cpg_gpe_cycles : cpg_cycles(normals, cfg.format);
 }
 
 }  // namespace
 
-Unit::Unit(const UnitConfig& cfg)
-    : cfg_(checked(cfg)),
+Unit::Unit(const HardwareConfig& cfg, NormalMode normals, int cpg_gpe_cycles)
+    : hw_(checked(cfg, normals)),
       tri_fifo_(cfg.tri_fifo_depth),
-      cpg_(cfg.normals, cfg.format, cpg_counter_load(cfg), cfg.cpg_mapping == CpgMapping::Gpe),
-      te_(cfg.int_blocks, cfg.int_latency, cfg.te_contexts, cfg.normals, cfg.format),
+      cpg_(normals, cfg.format, cpg_counter_load(cfg, normals, cpg_gpe_cycles), cfg.cpg_mapping == CpgMapping::Gpe),
+      te_(cfg.int_blocks, cfg.int_latency, cfg.te_contexts, normals, cfg.format),
       vtx_fifo_(cfg.vtx_fifo_depth),
       counters_(cfg.int_blocks) {
   reset();

@@ -42,7 +42,10 @@ struct CycleActivity {
 
 class Unit {
  public:
-  explicit Unit(const UnitConfig& cfg);  // cfg must have passed validate()
+  // The unit is built from its hardware parameters and its static mode input; the GPE mapping of
+  // the CPG also needs the GPE cycles it takes per triangle. cfg must have passed validate().
+  Unit(const HardwareConfig& hw, NormalMode normals, int cpg_gpe_cycles);
+  explicit Unit(const UnitConfig& cfg) : Unit(cfg.hardware(), cfg.normals, cfg.cpg_gpe_cycles) {}
 
   // Asynchronous reset (doc §2): empties everything and clears every counter.
   void reset();
@@ -59,7 +62,7 @@ class Unit {
   void tick(const UnitInputs& in);
 
   const UnitStats& stats() const { return counters_.stats(); }
-  const UnitConfig& config() const { return cfg_; }
+  const HardwareConfig& hardware() const { return hw_; }
   int cpg_cycles() const { return cpg_.cycles(); }  // C of doc §5 for this configuration
 
   // Observability of the cycle last simulated by tick().
@@ -73,7 +76,7 @@ class Unit {
 
  private:
   // The blocks of rtl/tess_unit.sv, in data-flow order.
-  UnitConfig cfg_;
+  HardwareConfig hw_;
   Fifo<TriangleFx> tri_fifo_;
   CpgBlock cpg_;
   ControlPointBuffer buffers_;

@@ -26,6 +26,27 @@ struct VertexFx {
   bool operator==(const VertexFx&) const = default;
 };
 
+// The output vertex's fields as the RTL names its ports (vtx_<name>_o), each read as integers
+// (`count` components): the co-simulation compares them in this order and `tessim schema`
+// lists them.
+struct VertexField {
+  const char* name;
+  int count;
+  std::int64_t (*get)(const VertexFx&, int component);
+};
+inline constexpr std::array<VertexField, 10> kVertexFields{{
+    {"vtx_pos", 3, [](const VertexFx& x, int c) -> std::int64_t { return x.pos[static_cast<std::size_t>(c)]; }},
+    {"vtx_nrm", 3, [](const VertexFx& x, int c) -> std::int64_t { return x.nrm[static_cast<std::size_t>(c)]; }},
+    {"vtx_u", 1, [](const VertexFx& x, int) -> std::int64_t { return x.u; }},
+    {"vtx_v", 1, [](const VertexFx& x, int) -> std::int64_t { return x.v; }},
+    {"vtx_j", 1, [](const VertexFx& x, int) -> std::int64_t { return x.j; }},
+    {"vtx_k", 1, [](const VertexFx& x, int) -> std::int64_t { return x.k; }},
+    {"vtx_l", 1, [](const VertexFx& x, int) -> std::int64_t { return x.L; }},
+    {"vtx_id", 1, [](const VertexFx& x, int) -> std::int64_t { return x.id; }},
+    {"vtx_last", 1, [](const VertexFx& x, int) -> std::int64_t { return x.last; }},
+    {"vtx_flags", 1, [](const VertexFx& x, int) -> std::int64_t { return x.flags; }},
+}};
+
 // Inputs of one cycle.
 struct UnitInputs {
   bool tri_valid = false;

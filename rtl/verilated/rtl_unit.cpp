@@ -1,6 +1,7 @@
 #include "rtl/verilated/rtl_unit.hpp"
 
-#include <array>
+#include <stdexcept>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -8,13 +9,7 @@
 #include "rtl/verilated/verilated_unit.hpp"
 #include "sim/params.hpp"
 
-#include "Vtess_n1.h"
-#include "Vtess_n2.h"
-#include "Vtess_n2_bug1.h"
-#include "Vtess_n2_bug2.h"
-#include "Vtess_n2_verif.h"
-#include "Vtess_n3.h"
-#include "Vtess_n4.h"
+#include "rtl_variant_headers.inc"  // generated: the Verilated model of each variant
 
 namespace tessim::rtl {
 
@@ -29,16 +24,12 @@ struct Variant {
   Maker make;
 };
 
-// One row per verilated configuration (rtl/CMakeLists.txt).
-const std::array<Variant, 7> kVariants{{
-    {{"n1", 1, 0, false}, &make_variant<Vtess_n1>},
-    {{"n2", 2, 0, false}, &make_variant<Vtess_n2>},
-    {{"n3", 3, 0, false}, &make_variant<Vtess_n3>},
-    {{"n4", 4, 0, false}, &make_variant<Vtess_n4>},
-    {{"n2_verif", 2, 0, true}, &make_variant<Vtess_n2_verif>},
-    {{"n2_bug1", 2, 1, false}, &make_variant<Vtess_n2_bug1>},
-    {{"n2_bug2", 2, 2, false}, &make_variant<Vtess_n2_bug2>},
-}};
+// One row per Verilated configuration, generated from rtl/CMakeLists.txt.
+#define TESSIM_RTL_VARIANT(name, model, verif, ...) {{#name, verif, __VA_ARGS__}, &make_variant<model>},
+const std::vector<Variant> kVariants{
+#include "rtl_variants.inc"
+};
+#undef TESSIM_RTL_VARIANT
 
 }  // namespace
 
@@ -51,8 +42,26 @@ std::unique_ptr<RtlUnit> make_rtl_unit(const std::string& variant, std::uint64_t
   throw std::invalid_argument("unknown RTL variant '" + variant + "' (known: " + known + ")");
 }
 
+int VariantSpec::inject_bug() const {
+  for (const RtlParameter& p : parameters)
+    if (std::string_view(p.name) == "InjectBug") return p.value;
+  return 0;
+}
+
+sim::HardwareConfig VariantSpec::config() const {
+  sim::UnitConfig cfg;  // tess_pkg's defaults are UnitConfig's
+  for (const RtlParameter& r : parameters) {
+    if (std::string_view(r.name) == "InjectBug") continue;  // a test fault, not a hardware parameter
+    const sim::ParamSpec* p = sim::find_rtl_param(r.name);
+    if (!p) throw std::logic_error(std::string("RTL variant ") + name + ": unknown parameter " + r.name);
+    p->set(cfg, r.value);
+  }
+  cfg.cpg_mapping = sim::CpgMapping::Dedicated;
+  return cfg.hardware();
+}
+
 void check_config(const RtlUnit& unit, const sim::UnitConfig& cfg) {
-  const sim::UnitConfig& rtl = unit.config();
+  const sim::UnitConfig rtl = sim::with_hardware(unit.config(), cfg);  // the run's workload and environment
   const std::string where = "RTL variant " + unit.variant();
   // Every parameter that is a parameter of tess_unit (sim/params.cpp) must match the build.
   for (const sim::ParamSpec& p : sim::unit_params()) {

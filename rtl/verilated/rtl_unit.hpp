@@ -13,6 +13,7 @@
 
 #include "model/normal_mode.hpp"
 #include "sim/config.hpp"
+#include "sim/dut.hpp"
 #include "sim/unit_io.hpp"
 
 namespace tessim::rtl {
@@ -23,29 +24,29 @@ class RtlAssertionError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-class RtlUnit {
+class RtlUnit : public sim::Dut {
  public:
-  virtual ~RtlUnit();
+  ~RtlUnit() override;
   RtlUnit(const RtlUnit&) = delete;
   RtlUnit& operator=(const RtlUnit&) = delete;
 
   // Asserts rst_ni (asynchronous) and releases it; the cycle count restarts at 0.
-  virtual void reset() = 0;
+  void reset() override = 0;
   // mode_i; static during a run (throws std::invalid_argument for a mode the unit lacks).
   virtual void set_mode(NormalMode mode) = 0;
 
   // Outputs: functions of registered state, valid between ticks.
-  virtual bool tri_ready() const = 0;
-  virtual bool vtx_valid() const = 0;
-  virtual sim::VertexFx vtx() const = 0;  // meaningful only while vtx_valid()
+  bool tri_ready() const override = 0;
+  bool vtx_valid() const override = 0;
+  sim::VertexFx vtx() const override = 0;  // meaningful only while vtx_valid()
   // The RTL's CPG is dedicated: it never asks the geometry engine for spare cycles.
-  bool cpg_computing() const { return false; }
-  virtual sim::UnitCounters counters() const = 0;
+  bool cpg_computing() const final { return false; }
+  sim::UnitCounters counters() const override = 0;
 
   // One clock cycle: drive the inputs, evaluate, rising edge, evaluate. UnitInputs::cpg_step
   // is ignored (the RTL implements the dedicated CPG). Throws RtlAssertionError when an
   // assertion of a --assert build fails during the cycle.
-  virtual void tick(const sim::UnitInputs& in) = 0;
+  void tick(const sim::UnitInputs& in) override = 0;
 
   // FST waveform: open a file, dump only while enabled (enabled by open_wave), close. Each
   // tick dumps at time 2 x cycle (inputs applied, clock low) and 2 x cycle + 1 (after the
@@ -60,19 +61,19 @@ class RtlUnit {
   int contexts() const { return config_.te_contexts; }
   int inject_bug() const { return inject_bug_; }
   const sim::NumberFormat& format() const { return config_.format; }
-  // The cycle-model configuration that matches this variant (dedicated CPG; the mode, L, GPE
-  // fields keep their defaults and belong to the run).
-  const sim::UnitConfig& config() const { return config_; }
+  // The hardware this variant implements (dedicated CPG); mode, factors and the geometry engine
+  // belong to the run.
+  const sim::HardwareConfig& config() const { return config_; }
   std::uint64_t cycle() const { return cycle_; }  // ticks since the last reset
 
  protected:
-  RtlUnit(std::string variant, const sim::UnitConfig& config, int inject_bug)
+  RtlUnit(std::string variant, const sim::HardwareConfig& config, int inject_bug)
       : variant_(std::move(variant)), config_(config), inject_bug_(inject_bug) {}
   std::uint64_t cycle_ = 0;
 
  private:
   std::string variant_;
-  sim::UnitConfig config_;
+  sim::HardwareConfig config_;
   int inject_bug_ = 0;
 };
 

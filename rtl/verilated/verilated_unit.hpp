@@ -82,43 +82,28 @@ inline int verilator_seed(std::uint64_t seed) {
 
 }  // namespace detail
 
-// The parameters a model was verilated with (the -G values of rtl/CMakeLists.txt on top of the
-// tess_pkg defaults, which are the defaults of sim::UnitConfig), and how to construct it.
+// A Verilated configuration as rtl/CMakeLists.txt declares it (tessim_rtl_variant): its name,
+// whether it is a verification build, and the tess_unit parameters given on top of tess_pkg's
+// defaults (which are sim::UnitConfig's).
+struct RtlParameter {
+  const char* name;  // tess_unit parameter, e.g. "IntBlocks"
+  int value;
+};
+
 struct VariantSpec {
-  static inline const sim::UnitConfig kDefaults{};
-
   const char* name;
-  int int_blocks;
-  int inject_bug = 0;
-  bool randomize_x = false;  // --x-initial unique build: seed the random initial values
-  int int_latency = kDefaults.int_latency;
-  int contexts = kDefaults.te_contexts;
-  int tri_fifo_depth = kDefaults.tri_fifo_depth;
-  int vtx_fifo_depth = kDefaults.vtx_fifo_depth;
-  int coord_int_bits = kDefaults.format.coord_int_bits;
-  int coord_frac_bits = kDefaults.format.coord_frac_bits;
-  int bary_bits = kDefaults.format.bary_bits;
+  bool randomize_x = false;  // VERIF build: seed the random initial values, assertions on
+  std::vector<RtlParameter> parameters;
 
-  sim::UnitConfig config() const {
-    sim::UnitConfig cfg;
-    cfg.format.coord_int_bits = coord_int_bits;
-    cfg.format.coord_frac_bits = coord_frac_bits;
-    cfg.format.bary_bits = bary_bits;
-    cfg.int_blocks = int_blocks;
-    cfg.int_latency = int_latency;
-    cfg.te_contexts = contexts;
-    cfg.tri_fifo_depth = tri_fifo_depth;
-    cfg.vtx_fifo_depth = vtx_fifo_depth;
-    cfg.cpg_mapping = sim::CpgMapping::Dedicated;
-    return cfg;
-  }
+  int inject_bug() const;                 // InjectBug, 0 when not given
+  sim::HardwareConfig config() const;     // the hardware it implements (dedicated CPG)
 };
 
 template <class Model>
 class VerilatedUnit final : public RtlUnit {
  public:
   VerilatedUnit(const VariantSpec& spec, std::uint64_t seed)
-      : RtlUnit(spec.name, spec.config(), spec.inject_bug),
+      : RtlUnit(spec.name, spec.config(), spec.inject_bug()),
         context_(std::make_unique<VerilatedContext>()) {
     context_->fatalOnError(false);  // a failed assertion becomes an RtlAssertionError
     context_->traceEverOn(true);

@@ -110,6 +110,9 @@ def main():
                             0 < float(r["error.normal_angle_max"]) < 1e-3):
                 fail(f"point {r['point']}: errors out of range: {r['error.position_max']}, "
                      f"{r['error.normal_angle_max']}")
+            if has and r.get("error.arithmetic.beyond_bound") != "0":
+                fail(f"point {r['point']}: {r.get('error.arithmetic.beyond_bound')} vertices beyond the "
+                     f"arithmetic bound")
 
         # Rerun: all cached, identical output.
         first = out.read_text()

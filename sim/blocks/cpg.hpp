@@ -7,6 +7,7 @@
 // engine (the counter is loaded with C and counts only cycles the GPE grants, cpg_step).
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "sim/blocks/cp_buffer.hpp"
@@ -18,6 +19,8 @@ namespace tessim::sim {
 enum class CpgAction : std::uint8_t { Idle, Accept, Compute, WaitGpe, Write, Blocked };
 // Its statistics class (docs/microarchitecture.md §10).
 enum class CpgClass : std::uint8_t { Busy, Blocked, WaitGpe, Idle };
+inline constexpr std::array<CpgClass, 4> kCpgClasses{CpgClass::Busy, CpgClass::Blocked, CpgClass::WaitGpe,
+                                                     CpgClass::Idle};
 
 const char* to_string(CpgAction a);
 const char* to_string(CpgClass c);

@@ -21,6 +21,9 @@ namespace tessim::sim {
 
 // The TE's statistics class of a cycle (docs/microarchitecture.md §10), in priority order.
 enum class TeClass : std::uint8_t { ContextLimited, IntLimited, Busy, BlockedByGpe, StarvedByCpg, Idle, Pipeline };
+inline constexpr std::array<TeClass, 7> kTeClasses{TeClass::ContextLimited, TeClass::IntLimited, TeClass::Busy,
+                                                   TeClass::BlockedByGpe, TeClass::StarvedByCpg, TeClass::Idle,
+                                                   TeClass::Pipeline};
 const char* to_string(TeClass c);
 
 // One operation issued to an INT block.
@@ -98,15 +101,14 @@ class Te {
  private:
   struct Context {
     std::array<FxVec, int_ops::kOpCount> t{};  // temporaries T0..T13
-    std::int64_t w = 0, u = 0, v = 0;
+    // The vertex as it will leave the TE, but for pos and nrm (written at retirement from T13
+    // and the mode's normal op): weights, lattice point, factor, patch id, last, flags.
+    VertexFx tag;
+    std::int64_t w = 0;  // third weight, 1 - u - v, used by every INT op
     std::uint32_t issued = 0, done = 0;  // bit o: op o issued / result written
     // Ops not issued whose dependences are all done: dependences_met(done) & ~issued, kept up to
     // date when done or issued change instead of being derived every cycle.
     std::uint32_t ready = 0;
-    int j = 0, k = 0, L = 1;
-    std::uint32_t id = 0;
-    bool last = false;
-    std::uint8_t flags = 0;
     std::uint8_t buffer = 0;
     std::uint64_t seq = 0;
   };
@@ -135,7 +137,7 @@ class Te {
       const int_ops::Operand& o = src[static_cast<std::size_t>(i)];
       return base[static_cast<int>(o.net)][o.index];  // Net::B, N, T: the order of `base`
     };
-    ctx.t[static_cast<std::size_t>(op)] = int_op(ctx.w, ctx.u, ctx.v, operand(0), operand(1), operand(2), bary_bits_);
+    ctx.t[static_cast<std::size_t>(op)] = int_op(ctx.w, ctx.tag.u, ctx.tag.v, operand(0), operand(1), operand(2), bary_bits_);
     ctx.issued |= std::uint32_t{1} << op;
     ints_.issue(context_slot, std::uint32_t{1} << op);
     issued_[static_cast<std::size_t>(block)] = IssuedOp{block, context_slot, op, ctx.seq};
@@ -166,17 +168,10 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
   if (retire_into) {
     const Context& h = contexts_[static_cast<std::size_t>(head_)];
     VertexFx& out = *retire_into;
+    out = h.tag;
     out.pos = h.t[int_ops::kPositionOp];
     out.nrm = h.t[static_cast<std::size_t>(normal_op_)];
-    out.u = h.u;
-    out.v = h.v;
-    out.j = h.j;
-    out.k = h.k;
-    out.L = h.L;
-    out.id = h.id;
-    out.last = h.last;
-    out.flags = h.flags;
-    if (h.last) buffers.release(h.buffer);
+    if (h.tag.last) buffers.release(h.buffer);
     if (retired_seq) *retired_seq = h.seq;
     head_ = head_ + 1 == n_contexts_ ? 0 : head_ + 1;
   }
@@ -194,16 +189,10 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     if (tail >= n_contexts_) tail -= n_contexts_;
     Context& ctx = contexts_[static_cast<std::size_t>(tail)];
     const DpgPoint p = dpg_.point(buf.L);
-    ctx.j = p.j;
-    ctx.k = p.k;
-    ctx.L = buf.L;
-    ctx.u = p.u;
-    ctx.v = p.v;
+    ctx.tag = VertexFx{.pos = {}, .nrm = {}, .u = p.u, .v = p.v, .j = p.j, .k = p.k, .L = buf.L, .id = buf.id,
+                       .last = p.last, .flags = buf.cp.flags};
     ctx.w = p.w;
-    ctx.id = buf.id;
-    ctx.flags = buf.cp.flags;
     ctx.buffer = static_cast<std::uint8_t>(buffers.rd_ptr());
-    ctx.last = p.last;
     ctx.issued = absent_ops_;
     ctx.done = absent_ops_;
     ctx.ready = dependences_met(ctx.done) & ~ctx.issued;

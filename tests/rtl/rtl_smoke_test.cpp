@@ -247,7 +247,7 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
 
 TEST(RtlSmoke, ConfigurationCheckNamesTheFirstDifference) {
   auto unit = rtl::make_rtl_unit("n2");
-  sim::UnitConfig cfg = unit->config();
+  sim::UnitConfig cfg = sim::with_hardware(unit->config());
   EXPECT_NO_THROW(rtl::check_config(*unit, cfg));
   cfg.int_blocks = 3;
   try {
@@ -256,10 +256,10 @@ TEST(RtlSmoke, ConfigurationCheckNamesTheFirstDifference) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("int_blocks"), std::string::npos) << e.what();
   }
-  cfg = unit->config();
+  cfg = sim::with_hardware(unit->config());
   cfg.format.coord_frac_bits = 18;
   EXPECT_THROW(rtl::check_config(*unit, cfg), InputError);
-  cfg = unit->config();
+  cfg = sim::with_hardware(unit->config());
   cfg.cpg_mapping = sim::CpgMapping::Gpe;
   EXPECT_THROW(rtl::check_config(*unit, cfg), InputError);
 }

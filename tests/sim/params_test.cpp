@@ -2,6 +2,9 @@
 // JSON round trip, ranges, command-line flags and aliases, `tessim schema`, the README table.
 #include <gtest/gtest.h>
 
+#include <iterator>
+#include <regex>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -231,6 +234,24 @@ TEST(Schema, BinaryPrintsValidJsonListingEveryParameter) {
   EXPECT_EQ(s["rtl_parameters"].size(), 8u);
 }
 
+// A Verilated variant gives only the parameters that differ from tess_pkg's defaults
+// (rtl/CMakeLists.txt), so those defaults must be UnitConfig's.
+TEST(Schema, RtlPackageDefaultsAreTheConfigDefaults) {
+  std::ifstream sv(std::string(TESSIM_SOURCE_DIR) + "/rtl/tess_pkg.sv");
+  ASSERT_TRUE(sv) << "rtl/tess_pkg.sv";
+  const std::string pkg((std::istreambuf_iterator<char>(sv)), std::istreambuf_iterator<char>());
+  int checked = 0;
+  for (const ParamSpec& p : unit_params()) {
+    if (!p.rtl) continue;
+    const std::regex line(std::string("localparam int unsigned ") + p.rtl + R"(\s*=\s*(\d+);)");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(pkg, m, line)) << p.rtl << " not in tess_pkg.sv";
+    EXPECT_EQ(json(std::stoi(m[1].str())), p.get(UnitConfig{})) << p.rtl;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 8);
+}
+
 TEST(Schema, IntOpsAndStatistics) {
   const json s = schema_json();
   ASSERT_EQ(s["int_ops"].size(), 14u);
@@ -245,8 +266,15 @@ TEST(Schema, IntOpsAndStatistics) {
   EXPECT_EQ(s["int_ops"][6]["operands_linear"], json({"n0", "n2", "n5"}));
   EXPECT_EQ(s["int_ops_per_mode"]["quadratic"]["ops_per_vertex"], 14);
   EXPECT_EQ(s["int_ops_per_mode"]["linear"]["ops_per_vertex"], 11);
-  EXPECT_EQ(s["statistics"]["classes"]["te"],
-            json({"busy", "blocked_by_gpe", "starved_by_cpg", "idle", "pipeline"}));
+  EXPECT_EQ(s["statistics"]["classes"]["te"], json({"context_limited", "int_limited", "busy", "blocked_by_gpe",
+                                                     "starved_by_cpg", "idle", "pipeline"}));
+  // The counters the co-simulation compares are the RTL's perf ports, the vertex fields its
+  // vtx ports (rtl/tess_unit.sv).
+  std::ifstream sv(std::string(TESSIM_SOURCE_DIR) + "/rtl/tess_unit.sv");
+  const std::string rtl((std::istreambuf_iterator<char>(sv)), std::istreambuf_iterator<char>());
+  for (const json& o : s["statistics"]["vertex_outputs"])
+    EXPECT_NE(rtl.find(" " + o["port"].get<std::string>() + ","), std::string::npos) << o;
+  EXPECT_EQ(s["statistics"]["counters"].size(), 3u + 1u + 11u);
   EXPECT_EQ(s["statistics"]["classes"]["gpe"], json({"busy", "stalled", "cpg", "starved"}));
 }
 

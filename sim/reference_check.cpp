@@ -1,0 +1,166 @@
+#include "sim/reference_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace tessim::sim {
+
+void ErrorAccumulator::add_position(double relative_error) {
+  ++e_.vertices;
+  e_.position_max = std::max(e_.position_max, relative_error);
+  sum_pos2_ += relative_error * relative_error;
+}
+
+void ErrorAccumulator::add_normal_angle(double radians) {
+  ++e_.normals_compared;
+  e_.normal_angle_max = std::max(e_.normal_angle_max, radians);
+  sum_ang2_ += radians * radians;
+}
+
+ErrorStats ErrorAccumulator::result() const {
+  ErrorStats r = e_;
+  if (r.vertices) r.position_rms = std::sqrt(sum_pos2_ / static_cast<double>(r.vertices));
+  if (r.normals_compared) r.normal_angle_rms = std::sqrt(sum_ang2_ / static_cast<double>(r.normals_compared));
+  return r;
+}
+
+namespace {
+
+std::string vec_str(const FxVec& v) {
+  std::ostringstream os;
+  os << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+  return os.str();
+}
+
+PnInput dequantized_input(const TriangleFx& tri, const NumberFormat& fmt) {
+  PnInput in;
+  for (int i = 0; i < 3; ++i) {
+    in.p[i] = dequantize(tri.p[i], fmt);
+    in.n[i] = dequantize(tri.n[i], fmt);
+  }
+  return in;
+}
+
+}  // namespace
+
+std::string describe(const VertexFx& x) {
+  std::ostringstream os;
+  os << "patch " << x.id << " (j,k)=(" << x.j << "," << x.k << ") L=" << x.L << " pos=" << vec_str(x.pos)
+     << " nrm=" << vec_str(x.nrm) << " u=" << x.u << " v=" << x.v << (x.last ? " last" : "")
+     << (x.flags ? " flags=" + std::to_string(x.flags) : "");
+  return os.str();
+}
+
+ArithmeticCheck::ArithmeticCheck(TriangleLookup triangle, double diagonal, const UnitConfig& cfg)
+    : triangle_(std::move(triangle)), cfg_(cfg), budget_(position_error_budget(cfg.format)), diagonal_(diagonal) {}
+
+double ArithmeticCheck::diagonal_of(const std::vector<TriangleFx>& stream, const NumberFormat& fmt) {
+  if (stream.empty()) return 1.0;
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const TriangleFx& t : stream)
+    for (const FxVec& p : t.p) {
+      const glm::dvec3 x = dequantize(p, fmt);
+      lo = glm::min(lo, x);
+      hi = glm::max(hi, x);
+    }
+  return std::max(glm::length(hi - lo), 1e-12);
+}
+
+ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg) {
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const glm::dvec3& p : mesh.positions) {
+    const glm::dvec3 x = dequantize(quantize(scaling.to_unit(p), cfg.format), cfg.format);
+    lo = glm::min(lo, x);
+    hi = glm::max(hi, x);
+  }
+  const double diagonal = mesh.positions.empty() ? 1.0 : std::max(glm::length(hi - lo), 1e-12);
+  return ArithmeticCheck(
+      [&mesh, scaling, cfg](std::uint32_t id) { return to_fixed(mesh, id, scaling, cfg.format, cfg.tess_factor); },
+      diagonal, cfg);
+}
+
+bool ArithmeticCheck::check(const VertexFx& v) {
+  if (!cached_ || v.id != cached_id_) {
+    const TriangleFx tri = triangle_(v.id);
+    patch_ = make_patch(dequantized_input(tri, cfg_.format), cfg_.normals);
+    normal_bound_ = normal_error_bound(tri, cfg_.normals, cfg_.format);
+    cached_id_ = v.id;
+    cached_ = true;
+  }
+  const double scale = static_cast<double>(cfg_.format.bary_one());
+  const PnVertex ref = eval_bernstein(patch_, static_cast<double>(v.u) / scale, static_cast<double>(v.v) / scale);
+  const glm::dvec3 pos = dequantize(v.pos, cfg_.format);
+  const glm::dvec3 nrm = dequantize(v.nrm, cfg_.format);
+  const double pos_err = glm::length(pos - ref.position);
+  acc_.add_position(pos_err / diagonal_);
+  bool beyond = pos_err > budget_.position_units + 1e-12;
+  std::string why =
+      beyond ? "position error " + std::to_string(pos_err) + " > bound " + std::to_string(budget_.position_units) : "";
+  const double len = glm::length(nrm);
+  const double angle_bound = normal_angle_bound(normal_bound_, len);
+  if (angle_bound >= 0) {  // the output normal has a direction to compare
+    const double c = std::clamp(glm::dot(nrm / len, glm::normalize(ref.normal)), -1.0, 1.0);
+    const double angle = std::acos(c);
+    acc_.add_normal_angle(angle);
+    if (angle > angle_bound + 1e-9) {
+      beyond = true;
+      why = "normal angle " + std::to_string(angle) + " rad > bound " + std::to_string(angle_bound);
+    }
+  }
+  if (beyond) {
+    if (beyond_ == 0) worst_ = describe(v) + ": " + why;
+    ++beyond_;
+  }
+  return !beyond;
+}
+
+ArithmeticErrors ArithmeticCheck::result() const { return {acc_.result(), beyond_, worst_}; }
+
+MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg)
+    : mesh_(mesh), scaling_(scaling), cfg_(cfg), diagonal_(bounding_box(mesh).diagonal()) {
+  if (!(diagonal_ > 0)) diagonal_ = 1.0;  // a single point: absolute errors
+}
+
+void MeshErrors::add(const VertexFx& v) {
+  if (!cached_ || v.id != cached_id_) {
+    const glm::uvec3& tri = mesh_.triangles[v.id];
+    PnInput in;
+    for (int c = 0; c < 3; ++c) {
+      in.p[c] = mesh_.positions[tri[c]];
+      in.n[c] = mesh_.normals[tri[c]];
+    }
+    patch_ = make_patch(in, cfg_.normals);
+    cached_id_ = v.id;
+    cached_ = true;
+  }
+  // The reference at the exact domain point, as `tessim tessellate` evaluates it.
+  const double segments = static_cast<double>(v.L);
+  const PnVertex ref = eval_de_casteljau(patch_, v.j / segments, v.k / segments);
+  const glm::dvec3 pos = position_from_fixed(v.pos, scaling_, cfg_.format);
+  acc_.add_position(glm::length(pos - ref.position) / diagonal_);
+  const glm::dvec3 nrm = normal_from_fixed(v.nrm, cfg_.format);
+  if (glm::length(nrm) > 0) {  // a vanished normal has no direction to compare
+    acc_.add_normal_angle(std::atan2(glm::length(glm::cross(nrm, ref.normal)), glm::dot(nrm, ref.normal)));
+  }
+}
+
+nlohmann::json to_json(const ErrorStats& e) {
+  return {{"vertices", e.vertices},
+          {"normals_compared", e.normals_compared},
+          {"position_max", e.position_max},
+          {"position_rms", e.position_rms},
+          {"normal_angle_max", e.normal_angle_max},
+          {"normal_angle_rms", e.normal_angle_rms}};
+}
+
+nlohmann::json to_json(const ArithmeticErrors& e) {
+  nlohmann::json j = to_json(e.stats);
+  j["beyond_bound"] = e.beyond_bound;
+  if (!e.worst.empty()) j["worst"] = e.worst;
+  return j;
+}
+
+}  // namespace tessim::sim

@@ -1,0 +1,108 @@
+// The unit's output against the float64 reference, vertex by vertex, in two measurements
+// (docs/number-formats.md, Error analysis):
+//  - ArithmeticCheck: the reference built from the quantized input triangle and evaluated at the
+//    unit's own barycentric weights, so only the unit's arithmetic is measured; every vertex is
+//    held to the derived bound (sim/error_bound.hpp). The co-simulation and `tessim sim --errors`
+//    use it.
+//  - MeshErrors: the reference of the mesh as the file gives it, evaluated at the exact domain
+//    point (j/L, k/L), against the output in mesh coordinates: what a user of the unit sees
+//    (input quantization, barycentric rounding and arithmetic together). `tessim sim --errors`
+//    reports it; the study's error columns are these figures.
+// Positions are relative to the bounding-box diagonal, normal errors are angles in radians.
+#pragma once
+
+#include <cstdint>
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "model/mesh.hpp"
+#include "model/pn.hpp"
+#include "sim/config.hpp"
+#include "sim/error_bound.hpp"
+#include "sim/host.hpp"
+#include "sim/unit_io.hpp"
+
+namespace tessim::sim {
+
+// Maximum and root mean square of position and normal-angle errors.
+struct ErrorStats {
+  std::uint64_t vertices = 0;
+  std::uint64_t normals_compared = 0;  // vertices whose output normal has a direction
+  double position_max = 0, position_rms = 0;
+  double normal_angle_max = 0, normal_angle_rms = 0;
+};
+
+class ErrorAccumulator {
+ public:
+  void add_position(double relative_error);
+  void add_normal_angle(double radians);
+  ErrorStats result() const;
+
+ private:
+  ErrorStats e_;
+  double sum_pos2_ = 0, sum_ang2_ = 0;
+};
+
+struct ArithmeticErrors {
+  ErrorStats stats;
+  std::uint64_t beyond_bound = 0;  // vertices outside the derived bound
+  std::string worst;               // the first vertex beyond the bound, and why
+};
+
+// Patch ids index `triangle(id)`: the quantized input the unit received for that patch.
+class ArithmeticCheck {
+ public:
+  using TriangleLookup = std::function<TriangleFx(std::uint32_t id)>;
+  // `diagonal`: of the input in unit coordinates (the denominator of the relative error).
+  ArithmeticCheck(TriangleLookup triangle, double diagonal, const UnitConfig& cfg);
+
+  // Returns false when the vertex lies outside the bound.
+  bool check(const VertexFx& v);
+  ArithmeticErrors result() const;
+
+  // The bounding-box diagonal of a stream's dequantized positions.
+  static double diagonal_of(const std::vector<TriangleFx>& stream, const NumberFormat& fmt);
+  // The check of a whole mesh streamed with sim::MeshSource (each patch re-quantized on demand).
+  static ArithmeticCheck for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg);
+
+ private:
+  TriangleLookup triangle_;
+  UnitConfig cfg_;
+  ErrorBudget budget_;
+  double diagonal_ = 1.0;
+  std::uint32_t cached_id_ = 0;
+  bool cached_ = false;
+  PnPatch patch_;
+  double normal_bound_ = 0;
+  ErrorAccumulator acc_;
+  std::uint64_t beyond_ = 0;
+  std::string worst_;
+};
+
+class MeshErrors {
+ public:
+  MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg);
+  void add(const VertexFx& v);
+  ErrorStats result() const { return acc_.result(); }
+
+ private:
+  const Mesh& mesh_;
+  HostScaling scaling_;
+  UnitConfig cfg_;
+  double diagonal_ = 1.0;
+  std::uint32_t cached_id_ = 0;
+  bool cached_ = false;
+  PnPatch patch_;
+  ErrorAccumulator acc_;
+};
+
+// One line per vertex for messages: patch, lattice point, factor, position, normal, weights.
+std::string describe(const VertexFx& v);
+
+nlohmann::json to_json(const ErrorStats& e);
+nlohmann::json to_json(const ArithmeticErrors& e);
+
+}  // namespace tessim::sim
