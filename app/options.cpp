@@ -32,9 +32,9 @@ void check_output_paths(const std::vector<OutputPath>& outputs) {
     if (fs::is_directory(path, ec)) throw InputError(o.path, o.option, "is a directory");
     const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (!fs::is_directory(dir, ec))
-      throw InputError(o.path, o.option, "directory '" + dir.string() + "' does not exist");
+      throw InputError(o.path, o.option, "cannot open for writing: directory '" + dir.string() + "' does not exist");
     if (::access(dir.c_str(), W_OK | X_OK) != 0)
-      throw InputError(o.path, o.option, "directory '" + dir.string() + "' is not writable");
+      throw InputError(o.path, o.option, "cannot open for writing: directory '" + dir.string() + "' is not writable");
     const fs::path canonical = fs::weakly_canonical(path, ec);
     const fs::path key = ec ? path.lexically_normal() : canonical;
     for (const fs::path& other : seen)

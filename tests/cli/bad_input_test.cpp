@@ -193,6 +193,38 @@ TEST(BadCommandLine, HelpAndVersionStillExitZero) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Meshes: what is left out is a warning, what is broken an error.
+
+TEST(BadMesh, PointAndLineFacesAreAWarning) {
+  Dirs d;
+  const fs::path mesh = d.scratch.write("mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 2\n");
+  const TessimRun r = run_tessim({"tessellate", mesh.string(), "-o", d.at("out.obj").string()}, d.scratch.path());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("tessim: warning: " + mesh.string() + ": face 2: 1 face of 1 or 2 vertices (points or lines) ignored"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(d.at("out.obj")));
+}
+
+TEST(BadMesh, TruncatedStlBadObjNormalAndFarAwayMeshWriteNothing) {
+  Dirs d;
+  const std::string facet =
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+  const fs::path stl = d.scratch.write("cut.stl", "solid cut\n" + facet + facet);
+  const fs::path obj = d.scratch.write("normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n");
+  const fs::path far = d.scratch.write("far.obj", "v 10000000 0 0\nv 10000001 0 0\nv 10000000 1 0\nv 10000000 0 1\n"
+                                                  "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  expect_input_error(run_tessim({"tessellate", stl.string(), "-o", d.at("a.ply").string()}, d.scratch.path()),
+                     {"cut.stl: endsolid: missing", "truncated after 2 facets"});
+  expect_input_error(run_tessim({"sim", obj.string(), "-o", d.at("b.ply").string()}, d.scratch.path()),
+                     {"normal.obj: face at line 5: normal index 2 out of range (1 in the file)"});
+  expect_input_error(run_tessim({"render", far.string(), "--size", "64x64", "-o", d.at("c.png").string()},
+                                d.scratch.path()),
+                     {"far.obj: vertex coordinates: x reaches 1e+07", "single precision"});
+  EXPECT_TRUE(d.work.empty()) << entries_text(d.work);
+}
+
+// ---------------------------------------------------------------------------------------------
 // A run killed by SIGINT or SIGTERM removes its pending temporaries and dies of the signal.
 
 void expect_killed_render_leaves_nothing(int sig) {
