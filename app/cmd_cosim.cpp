@@ -62,6 +62,12 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
 }
 
 int run(const CosimArgs& a, const ConfigFlags& flags) {
+  if (a.seeds < 1 || a.seeds > 1000000)
+    throw InputError("command line", "--seeds", std::to_string(a.seeds) + " is outside 1..1000000");
+  if (a.wave_window < 1 || a.wave_window > 10000000)
+    throw InputError("command line", "--wave-window", std::to_string(a.wave_window) + " is outside 1..10000000");
+  // The waveform is written only on a divergence, long after the start: check its path now.
+  if (!a.wave.empty()) check_output_paths({{"--wave", a.wave}});
   const sim::UnitConfig cfg = flags.config();  // defaults, --config, the flags given
   const std::string variant = choose_variant(a, flags, cfg);
 
@@ -69,7 +75,7 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   std::string source;
   if (a.random_count > 0) {
     if (a.random_max_L < 1 || a.random_max_L > kMaxTessFactor)
-      throw InputError("--random-max-L", std::to_string(a.random_max_L), "must be in 1..64");
+      throw InputError("command line", "--random-max-L", std::to_string(a.random_max_L) + " is outside 1..64");
     source = std::to_string(a.random_count) + " random triangles";
   } else {
     const Mesh mesh = load_mesh(a.mesh);
@@ -108,16 +114,20 @@ void register_cosim(CLI::App& app) {
   auto args = std::make_shared<CosimArgs>();
   CLI::App* cmd = app.add_subcommand("cosim", "Lock-step co-simulation of the Verilated RTL against the cycle model");
   cmd->add_option("mesh", args->mesh, "Input mesh (default: Debian's assimp-testmodels Wuson.ply)");
-  cmd->add_option("--random", args->random_count, "Use N random triangles (with degenerate ones) instead of a mesh");
-  cmd->add_option("--random-max-L", args->random_max_L, "Largest factor of the random triangles (1..64)");
+  cmd->add_option("--random", args->random_count, "Use N random triangles (with degenerate ones) instead of a mesh")
+      ->transform(number_check<std::size_t>("command line", "--random", type_range<std::size_t>()));
+  cmd->add_option("--random-max-L", args->random_max_L, "Largest factor of the random triangles (1..64)")
+      ->transform(number_check<int>("command line", "--random-max-L", "1..64"));
   // --config and every parameter of sim/params.hpp (--int-blocks/--int selects the RTL build nN;
   // --seed also seeds the RTL's X randomisation).
   auto flags = std::make_shared<ConfigFlags>(*cmd);
-  cmd->add_option("--seeds", args->seeds, "Run this many consecutive seeds")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--seeds", args->seeds, "Run this many consecutive seeds (1..1000000)")
+      ->transform(number_check<int>("command line", "--seeds", "1..1000000"));
   cmd->add_option("--variant", args->variant, "RTL build to use (see docs/rtl.md)");
   cmd->add_flag("--verif", args->verif, "Use the verification build (X randomised)");
   cmd->add_option("--wave", args->wave, "On divergence, write an FST waveform of the window before it");
-  cmd->add_option("--wave-window", args->wave_window, "Cycles of waveform before the divergence")->check(CLI::Range(1, 10000000));
+  cmd->add_option("--wave-window", args->wave_window, "Cycles of waveform before the divergence (1..10000000)")
+      ->transform(number_check<int>("command line", "--wave-window", "1..10000000"));
   cmd->callback([args, flags]() {
     const int status = run(*args, *flags);
     if (status != 0) throw CLI::RuntimeError(status);

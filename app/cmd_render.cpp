@@ -112,6 +112,8 @@ void run_render(const RenderArgs& args) {
     throw InputError(output.string(), "output",
                      "unsupported image format '" + output.extension().string() + "' (use .png or .exr)");
 
+  check_output_paths({{"-o", output.string()}});
+
   const Mesh mesh = load_mesh(args.mesh);
   const std::uint64_t rendered = static_cast<std::uint64_t>(mesh.triangles.size()) * args.factor * args.factor;
   if (rendered > kMaxRenderedTriangles)
@@ -166,6 +168,7 @@ void register_render(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render the PN tessellation of a mesh to PNG or EXR");
   cmd->add_option("mesh", args->mesh, "Input mesh (OBJ, PLY, STL, OFF, ... via Assimp)")->required();
   cmd->add_option("-L,--tess-factor,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")
+      ->transform(number_check<int>("render", "-L", "1..64"))
       ->capture_default_str();
   cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
       ->capture_default_str();
@@ -175,8 +178,10 @@ void register_render(CLI::App& app) {
                 "Overlay triangle edges (input triangles dark, their refinement light)");
   cmd->add_option("--size", args->size, "Image size WxH per panel (1..8192 each)")->capture_default_str();
   cmd->add_option("--azimuth", args->azimuth, "View angle around the up axis, degrees from the front")
+      ->transform(number_check<double>("render", "--azimuth", "the finite numbers"))
       ->capture_default_str();
   cmd->add_option("--elevation", args->elevation, "View angle above the horizon, degrees (-90..90)")
+      ->transform(number_check<double>("render", "--elevation", "-90..90"))
       ->capture_default_str();
   cmd->add_option("--up", args->up, "Up axis of the model: y or z (front is +Z or -Y)")->capture_default_str();
   cmd->add_flag("--no-supersample", args->no_supersample, "One sample per pixel instead of 2x2");

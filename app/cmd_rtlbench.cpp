@@ -102,10 +102,18 @@ void register_rtlbench(CLI::App& app) {
   auto args = std::make_shared<RtlBenchArgs>();
   CLI::App* sub = app.add_subcommand("rtlbench", "Speed of the Verilated RTL versus the cycle model on a mesh");
   sub->add_option("mesh", args->mesh, "input mesh")->capture_default_str();
-  sub->add_option("-L,--tess-factor", args->tess_factor, "segments per edge")->capture_default_str();
-  sub->add_option("--int", args->int_blocks, "INT block counts (RTL builds n1..n4)")->capture_default_str();
-  sub->add_option("--gpe-cycles", args->gpe_cycles, "GPE cycles per vertex K")->capture_default_str();
-  sub->add_option("--repeat", args->repeat, "runs per configuration (median reported)")->capture_default_str();
+  sub->add_option("-L,--tess-factor", args->tess_factor, "segments per edge")
+      ->transform(number_check<int>("command line", "-L", "1..64"))
+      ->capture_default_str();
+  sub->add_option("--int", args->int_blocks, "INT block counts (RTL builds n1..n4)")
+      ->transform(number_check<int>("command line", "--int", type_range<int>()))
+      ->capture_default_str();
+  sub->add_option("--gpe-cycles", args->gpe_cycles, "GPE cycles per vertex K")
+      ->transform(number_check<int>("command line", "--gpe-cycles", type_range<int>()))
+      ->capture_default_str();
+  sub->add_option("--repeat", args->repeat, "runs per configuration (median reported)")
+      ->transform(number_check<int>("command line", "--repeat", type_range<int>()))
+      ->capture_default_str();
   sub->callback([args] { run(*args); });
 }
 

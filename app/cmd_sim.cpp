@@ -38,10 +38,15 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   if (!a.output.empty() && !is_supported_output(a.output))
     throw InputError(a.output, "output", "unsupported extension (use .ply or .obj)");
   if (a.trace_cycles == 0) throw InputError("command line", "--trace-cycles", "must be at least 1");
+  check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}});
 
   const Mesh mesh = load_mesh(a.mesh);
   const int L = cfg.tess_factor;
 
+  // Every output is opened (as a temporary beside its target) before the run, so that a path
+  // that cannot be written stops the command before anything is computed or moved into place.
+  std::unique_ptr<AtomicOutput> stats;
+  if (!a.stats.empty()) stats = std::make_unique<AtomicOutput>(a.stats);
   sim::SimHooks hooks;
   hooks.measure_errors = a.errors;
   std::unique_ptr<MeshWriter> writer;
@@ -66,14 +71,15 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
 
   const sim::SimResult result = sim::simulate(mesh, cfg, hooks);
 
-  // All outputs are complete in memory or in temporaries: move them into place.
+  // All outputs are complete in memory or in temporaries: move them into place (the small
+  // statistics are written out first, so that the renames are all that is left to fail).
+  if (stats) {
+    stats->stream() << sim::stats_json(result).dump(2) << "\n";
+    if (!stats->stream().flush()) throw InputError(a.stats, "output", "write failed");
+  }
   if (writer) writer->finish();
   if (trace) trace->finish();
-  if (!a.stats.empty()) {
-    AtomicOutput out(a.stats);
-    out.stream() << sim::stats_json(result).dump(2) << "\n";
-    out.commit();
-  }
+  if (stats) stats->commit();
   std::cout << sim::summary(result);
   if (schedule) {
     std::cout << "\nissue schedule (v<vertex>.<op>, first cycles from the first issue):\n"
@@ -94,7 +100,9 @@ void register_sim(CLI::App& app) {
   auto flags = std::make_shared<ConfigFlags>(*sub);  // --config and every parameter (sim/params.hpp)
   sub->add_option("--stats", args->stats, "write the statistics as JSON");
   sub->add_option("--trace", args->trace, "write a Chrome/Perfetto trace (JSON)");
-  sub->add_option("--trace-cycles", args->trace_cycles, "cycles recorded in the trace")->capture_default_str();
+  sub->add_option("--trace-cycles", args->trace_cycles, "cycles recorded in the trace")
+      ->transform(number_check<std::uint64_t>("command line", "--trace-cycles", "1..2^64-1"))
+      ->capture_default_str();
   sub->add_option("-o,--output", args->output, "write the tessellated mesh (.ply or .obj)");
   sub->add_flag("--schedule", args->schedule, "print the issue pattern of the first vertices");
   sub->add_flag("--errors", args->errors,

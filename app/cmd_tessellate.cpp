@@ -32,6 +32,8 @@ void run_tessellate(const TessellateArgs& args) {
                      "unsupported extension '" + std::filesystem::path(args.output).extension().string() +
                          "' (use .ply or .obj)");
 
+  check_output_paths({{"-o", args.output}});
+
   const Mesh mesh = load_mesh(args.mesh);
   const int L = args.factor;
   const std::uint64_t patches = mesh.triangle_count();
@@ -60,7 +62,9 @@ void register_tessellate(CLI::App& app) {
   auto args = std::make_shared<TessellateArgs>();
   CLI::App* cmd = app.add_subcommand("tessellate", "Tessellate a mesh with the float64 PN reference into PLY or OBJ");
   cmd->add_option("mesh", args->mesh, "Input mesh (OBJ, PLY, STL, OFF, ... via Assimp)")->required();
-  cmd->add_option("-L,--tess-factor,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")->capture_default_str();
+  cmd->add_option("-L,--tess-factor,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")
+      ->transform(number_check<int>("tessellate", "-L", "1..64"))
+      ->capture_default_str();
   cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output mesh: .ply (binary, double precision) or .obj")->required();

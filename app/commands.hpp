@@ -3,9 +3,16 @@
 // non-zero exit status.
 #pragma once
 
+#include <charconv>
+#include <cmath>
+#include <limits>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "model/error.hpp"
 
 #include "model/normal_mode.hpp"
 
@@ -15,6 +22,56 @@ namespace tessim::app {
 // the command and the option. The cycle-model commands check theirs through sim/params.hpp.
 void check_tess_factor(const char* command, int factor);
 NormalMode parse_normals_option(const char* command, const std::string& text);
+
+// Checks the text of a numeric option before CLI11 converts it, so that a bad value is an
+// InputError(source, element, reason) quoting the text as given: "'abc' is not an integer",
+// "'99999999999999' is outside 1..64" (a value the type T cannot hold; `range` is the option's
+// documented range), "'nan' is not a finite number". Integers are decimal: the text is
+// rewritten to its value, so "010" is 10 (CLI11 alone would read it as octal).
+template <class T>
+CLI::Validator number_check(std::string source, std::string element, std::string range) {
+  auto check = [source, element, range](std::string& text) -> std::string {
+    std::string_view digits = text;
+    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+    T value{};
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    const bool whole = end == digits.data() + digits.size() && !digits.empty();
+    if constexpr (std::is_floating_point_v<T>) {
+      if (ec == std::errc::result_out_of_range && whole)
+        throw InputError(source, element, "'" + text + "' is outside " + range);
+      if (ec != std::errc() || !whole) throw InputError(source, element, "'" + text + "' is not a number");
+      if (!std::isfinite(value)) throw InputError(source, element, "'" + text + "' is not a finite number");
+    } else {
+      // A negative number for an unsigned type parses as a number outside the range.
+      bool negative_for_unsigned = false;
+      if (std::is_unsigned_v<T> && ec != std::errc() && digits.size() > 1 && digits.front() == '-') {
+        long long probe = 0;
+        const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), probe);
+        negative_for_unsigned = r.ptr == digits.data() + digits.size() && r.ec != std::errc::invalid_argument;
+      }
+      if ((ec == std::errc::result_out_of_range && whole) || negative_for_unsigned)
+        throw InputError(source, element, "'" + text + "' is outside " + range);
+      if (ec != std::errc() || !whole) throw InputError(source, element, "'" + text + "' is not an integer");
+      text = std::to_string(value);
+    }
+    return {};
+  };
+  return CLI::Validator(check, "", "number");
+}
+
+// The range of T as text, for number_check where the option documents none.
+template <class T>
+std::string type_range() {
+  return std::to_string(std::numeric_limits<T>::lowest()) + ".." + std::to_string(std::numeric_limits<T>::max());
+}
+
+// The outputs a command writes, checked together before any work: distinct paths (each has
+// its own temporary beside it), none a directory. Throws InputError naming the option.
+struct OutputPath {
+  const char* option;
+  std::string path;
+};
+void check_output_paths(const std::vector<OutputPath>& outputs);
 
 void register_info(CLI::App& app);
 void register_tessellate(CLI::App& app);

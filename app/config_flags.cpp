@@ -1,9 +1,13 @@
 #include "app/config_flags.hpp"
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
+#include "app/commands.hpp"
 #include "model/error.hpp"
 
 namespace tessim::app {
@@ -21,6 +25,36 @@ std::string help_text(const sim::ParamSpec& p, const sim::UnitConfig& defaults) 
   return h;
 }
 
+// The JSON object of a --config file. Every failure is an InputError naming the file and, for a
+// value JSON cannot hold (a number beyond double's range, such as 1e400), its key.
+nlohmann::json read_config_file(const std::string& file) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw InputError(file, "file", "does not exist");
+  if (std::filesystem::is_directory(file, ec)) throw InputError(file, "file", "is a directory, not a JSON file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, "file", "cannot be opened for reading");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(file, "file", "read error");
+  // The key being read, for messages: the parser reports the key event before its value.
+  std::string key;
+  const nlohmann::json::parser_callback_t track = [&key](int depth, nlohmann::json::parse_event_t event,
+                                                         nlohmann::json& parsed) {
+    if (event == nlohmann::json::parse_event_t::key && depth == 1) key = parsed.get<std::string>();
+    return true;
+  };
+  try {
+    return nlohmann::json::parse(text, track);
+  } catch (const nlohmann::json::out_of_range& e) {
+    // nlohmann's text ("[json.exception.out_of_range.406] number overflow parsing '1e400'")
+    // without its prefix.
+    std::string reason = e.what();
+    if (const std::size_t close = reason.find("] "); close != std::string::npos) reason = reason.substr(close + 2);
+    throw InputError(file, key.empty() ? std::string("JSON") : key, reason + " (beyond the range of a double)");
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, "JSON", e.what());
+  }
+}
+
 }  // namespace
 
 ConfigFlags::ConfigFlags(CLI::App& cmd) {
@@ -34,9 +68,17 @@ ConfigFlags::ConfigFlags(CLI::App& cmd) {
     const std::string names = sim::cli_names(p);
     const std::string help = help_text(p, defaults);
     switch (p.type) {
-      case sim::ParamType::Int: e.option = cmd.add_option(names, e.i, help); break;
-      case sim::ParamType::UInt64: e.option = cmd.add_option(names, e.u, help); break;
-      case sim::ParamType::Double: e.option = cmd.add_option(names, e.d, help); break;
+      case sim::ParamType::Int:
+        e.option = cmd.add_option(names, e.i, help)->transform(number_check<int>("command line", p.flag, sim::range_text(p)));
+        break;
+      case sim::ParamType::UInt64:
+        e.option = cmd.add_option(names, e.u, help)
+                       ->transform(number_check<std::uint64_t>("command line", p.flag, sim::range_text(p)));
+        break;
+      case sim::ParamType::Double:
+        e.option =
+            cmd.add_option(names, e.d, help)->transform(number_check<double>("command line", p.flag, sim::range_text(p)));
+        break;
       case sim::ParamType::Enum: e.option = cmd.add_option(names, e.s, help); break;
     }
     e.option->group("Unit configuration");
@@ -61,14 +103,7 @@ sim::UnitConfig ConfigFlags::config() const {
   sim::UnitConfig cfg;
   std::string source = "command line";
   if (!config_file_.empty()) {
-    std::ifstream in(config_file_);
-    if (!in) throw InputError(config_file_, "file", "cannot open");
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-      throw InputError(config_file_, "JSON", e.what());
-    }
+    nlohmann::json j = read_config_file(config_file_);
     sim::apply_json(cfg, j, config_file_);
     source = config_file_;
   }

@@ -4,6 +4,7 @@
 #include "model/mesh_io.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -13,8 +14,12 @@
 
 namespace tessim {
 
-Mesh load_mesh(const std::filesystem::path& path) {
+Mesh load_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings) {
   const io::ImportedMesh imported = io::import_mesh(path);
+  for (const std::string& w : imported.warnings) {
+    if (warnings) warnings->push_back(w);
+    else std::fprintf(stderr, "tessim: warning: %s\n", w.c_str());
+  }
   Mesh mesh = weld(imported.mesh, [&](std::uint32_t v) { return imported.vertex_name(v); });
   if (!mesh.normals_from_file) mesh = compute_normals(std::move(mesh));
   return mesh;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -17,8 +18,12 @@ namespace tessim {
 // vertex. Normals from the file are kept when present (averaged over the welded copies and
 // renormalized); otherwise area- and angle-weighted vertex normals are computed.
 // Throws InputError naming the file, the element and the reason for: unreadable or malformed
-// files, empty meshes, NaN/Inf coordinates, zero-length file normals, out-of-range indices.
-Mesh load_mesh(const std::filesystem::path& path);
+// files, empty meshes, NaN/Inf coordinates, zero-length file normals, out-of-range indices,
+// coordinates beyond what single precision resolves at the mesh's scale.
+// What is read but left out (faces of 1 or 2 vertices among triangles) is a warning, each
+// "FILE: ELEMENT: what was done": appended to `warnings`, or printed to stderr as
+// "tessim: warning: ..." when `warnings` is null.
+Mesh load_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
 
 // Counts for `tessim info`.
 struct MeshStats {

@@ -1,6 +1,9 @@
 // All-or-nothing output files: data goes to a temporary file beside the target and is renamed
 // into place only when complete, so a failed run never leaves a half-written result
-// (docs/architecture.md, Bad input).
+// (docs/architecture.md, Bad input). Pending temporaries are also removed when the process is
+// killed by SIGINT, SIGTERM or SIGHUP: the first AtomicOutput installs handlers for those
+// signals (where they are not ignored or handled already) that unlink every pending temporary
+// and re-raise the signal.
 #pragma once
 
 #include <filesystem>
@@ -29,6 +32,10 @@ class AtomicOutput {
   std::filesystem::path temp_;
   std::ofstream out_;
   bool committed_ = false;
+  int slot_ = -1;  // entry in the table of temporaries the signal handler removes
 };
+
+// Temporaries that a signal would remove now (for tests).
+std::size_t pending_temporaries();
 
 }  // namespace tessim

@@ -5,8 +5,10 @@
 // binary files, loops forever on a header without end_header and trusts element counts for
 // allocation; its OFF reader clamps out-of-range indices, drops faces of more than 9 vertices
 // and allocates whatever the header declares (invalid/OutOfMemory.off: 16 GB). PLY and OFF
-// files are therefore checked structurally before Assimp sees them. Assimp's OBJ reader
-// rejects a bad face index without saying where; the face is then located here.
+// files are therefore checked structurally before Assimp sees them. Its ASCII STL reader loads
+// a file cut off between facets with fewer triangles; its OBJ reader rejects a bad vertex index
+// without saying where and drops all normals of a mesh with one bad normal index: ASCII STL
+// and OBJ files are checked here first too.
 #pragma once
 
 #include <algorithm>
@@ -26,7 +28,10 @@ namespace tessim::io {
 // Each throws InputError naming the file, the element and the reason; `data` is the whole file.
 void check_ply(const std::string& file, const std::string& data);  // header, every element present in full
 void check_off(const std::string& file, const std::string& data);  // header, counts, numbers, indices
-// The first OBJ face with an index out of range, if any.
+void check_stl(const std::string& file, const std::string& data);  // ASCII: closed solids, complete facets
+// The first OBJ face with an index out of range, if any. A negative (relative) index counts
+// back from the elements defined before its line, a positive one may refer to any element of
+// the file (as Assimp resolves them).
 std::optional<InputError> find_bad_obj_face(const std::string& file, const std::string& data);
 
 inline std::string to_lower(std::string s) {

@@ -9,8 +9,10 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cmath>
 #include <fstream>
 #include <limits>
+#include <sstream>
 #include <mutex>
 
 #include "model/io/format.hpp"
@@ -74,9 +76,11 @@ struct MeshInstance {
 };
 
 void collect_instances(const aiNode* node, const glm::dmat4& parent, std::vector<MeshInstance>& out, int depth) {
-  if (depth > 1024) return;  // a cyclic or absurdly deep node graph
+  if (depth > 1024 || node == nullptr) return;  // a cyclic or absurdly deep node graph, a missing child
   const glm::dmat4 transform = parent * to_glm(node->mTransformation);
+  if (node->mNumMeshes > 0 && node->mMeshes == nullptr) return;
   for (unsigned i = 0; i < node->mNumMeshes; ++i) out.push_back({node->mMeshes[i], transform});
+  if (node->mNumChildren > 0 && node->mChildren == nullptr) return;
   for (unsigned c = 0; c < node->mNumChildren; ++c) collect_instances(node->mChildren[c], transform, out, depth + 1);
 }
 
@@ -87,13 +91,74 @@ std::string scene_element(bool several_meshes, unsigned mesh, const std::string&
 
 glm::dvec3 to_glm(const aiVector3D& v) { return glm::dvec3(v.x, v.y, v.z); }
 
-// Index and value checks on the scene as read, before triangulation touches it.
-void check_scene(const std::string& file, const aiScene* scene) {
+std::string format_number(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+// Assimp holds coordinates in single precision (float32, 24-bit significand), whatever the
+// file stores. Far from the origin the float32 grid is coarse: at 1e7 its step is 1. A mesh
+// whose extent is not much larger than that step has lost its shape on import (vertices moved
+// or merged, normals that then cancel out): refuse it, saying why, rather than tessellate
+// what is left. The limit: the step at the largest coordinate of an axis must stay within
+// kMaxRelativeStep of the mesh's extent (its largest bounding-box side).
+constexpr double kMaxRelativeStep = 1.0 / 1024.0;
+
+// The float32 step (unit in the last place) at magnitude `x`.
+double float32_step(double x) {
+  const float f = static_cast<float>(std::abs(x));
+  return static_cast<double>(std::nextafter(f, std::numeric_limits<float>::infinity())) - static_cast<double>(f);
+}
+
+void check_precision(const std::string& file, const std::string& element, const glm::dvec3& lo, const glm::dvec3& hi,
+                     std::vector<std::string>& warnings) {
+  const glm::dvec3 size = hi - lo;
+  const double extent = std::max({size.x, size.y, size.z});
+  double magnitude = 0.0;
+  int axis = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double m = std::max(std::abs(lo[a]), std::abs(hi[a]));
+    if (m > magnitude) {
+      magnitude = m;
+      axis = a;
+    }
+  }
+  const double step = float32_step(magnitude);
+  const std::string where = std::string(1, "xyz"[axis]) + " reaches " + format_number(magnitude) +
+                            ", where single precision (float32, in which Assimp imports every file) resolves steps of " +
+                            format_number(step);
+  if (extent == 0.0) {
+    // Every vertex at one point: a degenerate mesh, or one that the float32 grid collapsed.
+    if (magnitude > 0.0)
+      warnings.push_back(file + ": " + element + ": all vertices import at one position; " + where +
+                         ": differences smaller than that in the file are lost");
+    return;
+  }
+  if (step > kMaxRelativeStep * extent)
+    throw InputError(file, element,
+                     where + ", " + format_number(100.0 * step / extent) + " % of the mesh extent " +
+                         format_number(extent) + ": the shape is lost on import (tessim needs steps below 1/1024 " +
+                         "of the extent); move the mesh near the origin");
+}
+
+// Index and value checks on the scene as read, before triangulation touches it; the precision
+// check of each mesh; faces of 1 or 2 vertices counted for a warning.
+void check_scene(const std::string& file, const aiScene* scene, std::vector<std::string>& warnings) {
   const bool several = scene->mNumMeshes > 1;
+  std::uint64_t small_faces = 0, triangles_or_polygons = 0;
+  std::string first_small_face;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* mesh = scene->mMeshes[m];
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices >= 3) {
+        ++triangles_or_polygons;
+      } else if (face.mNumIndices > 0 && small_faces++ == 0) {
+        first_small_face = scene_element(several, m, "face " + std::to_string(f));
+      }
       // Names are built only for a message: this runs for every corner.
       auto face_element = [&] { return scene_element(several, m, "face " + std::to_string(f)); };
       if (face.mNumIndices == 0) throw InputError(file, face_element(), "has no vertices");
@@ -106,6 +171,10 @@ void check_scene(const std::string& file, const aiScene* scene) {
         auto vertex_element = [&] { return scene_element(several, m, "vertex " + std::to_string(v)); };
         const glm::dvec3 p = to_glm(mesh->mVertices[v]);
         if (!is_finite(p)) throw InputError(file, vertex_element(), "coordinate is NaN or infinite " + format_vec(p));
+        if (face.mNumIndices >= 3) {
+          lo = glm::min(lo, p);
+          hi = glm::max(hi, p);
+        }
         if (mesh->mNormals) {
           const glm::dvec3 n = to_glm(mesh->mNormals[v]);
           if (!is_finite(n))
@@ -113,7 +182,14 @@ void check_scene(const std::string& file, const aiScene* scene) {
         }
       }
     }
+    if (lo.x <= hi.x) check_precision(file, scene_element(several, m, "vertex coordinates"), lo, hi, warnings);
   }
+  // Points and lines among surface faces: a file that mixes them, or faces that lost vertices.
+  // Only triangles and polygons are tessellated; a file of nothing else is refused later.
+  if (small_faces > 0 && triangles_or_polygons > 0)
+    warnings.push_back(file + ": " + first_small_face + ": " + std::to_string(small_faces) +
+                       (small_faces == 1 ? " face" : " faces") +
+                       " of 1 or 2 vertices (points or lines) ignored; only triangles and polygons are tessellated");
 }
 
 }  // namespace
@@ -131,6 +207,10 @@ ImportedMesh import_mesh(const std::filesystem::path& path) {
   if (std::filesystem::file_size(path, ec) == 0 && !ec) throw InputError(file, "file", "is empty");
   if (ext == ".ply") check_ply(file, read_file(file));
   if (ext == ".off") check_off(file, read_file(file));
+  if (ext == ".stl") check_stl(file, read_file(file));
+  if (ext == ".obj") {
+    if (auto located = find_bad_obj_face(file, read_file(file))) throw *located;
+  }
 
   std::lock_guard<std::mutex> lock(assimp_mutex());
   std::vector<std::string> logged_errors;
@@ -142,16 +222,14 @@ ImportedMesh import_mesh(const std::filesystem::path& path) {
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(file, 0);
   if (!scene) {
-    if (ext == ".obj") {
-      if (auto located = find_bad_obj_face(file, read_file(file))) throw *located;
-    }
     throw InputError(file, "import", std::string("Assimp cannot read it: ") + importer.GetErrorString());
   }
   for (const std::string& message : logged_errors)
     if (alters_geometry(message)) throw InputError(file, "import", "Assimp reported: " + message);
   if (scene->mNumMeshes == 0 || !scene->mRootNode) throw InputError(file, "faces", "the file contains no mesh");
 
-  check_scene(file, scene);
+  ImportedMesh out;
+  check_scene(file, scene, out.warnings);
   scene = importer.ApplyPostProcessing(aiProcess_Triangulate);
   if (!scene) throw InputError(file, "import", std::string("Assimp cannot triangulate it: ") + importer.GetErrorString());
 
@@ -185,7 +263,6 @@ ImportedMesh import_mesh(const std::filesystem::path& path) {
                      "no triangles (" + std::to_string(vertices) + " vertices, " + std::to_string(points) +
                          " point and " + std::to_string(lines) + " line primitives)");
 
-  ImportedMesh out;
   out.several_meshes = scene->mNumMeshes > 1;
   out.mesh.source = file;
   out.mesh.normals_from_file = use_file_normals;

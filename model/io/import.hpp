@@ -21,13 +21,17 @@ struct ImportedMesh {
   // With normals_from_file: (Assimp mesh, vertex in it) of every vertex, for messages.
   std::vector<std::pair<unsigned, unsigned>> origin;
   bool several_meshes = false;
+  // What was read but not used, each as "FILE: ELEMENT: what was done" (faces of 1 or 2
+  // vertices, left out); load_mesh prints them as warnings.
+  std::vector<std::string> warnings;
 
   std::string vertex_name(std::uint32_t vertex) const;  // "vertex 7" or "mesh 2 vertex 7"
 };
 
 // Throws InputError naming the file, the element and the reason for: missing, empty,
 // unreadable or malformed files, no triangles, NaN/Inf coordinates or normals, out-of-range
-// indices.
+// indices, ASCII STL files without 'endsolid' or with incomplete facets, and coordinates that
+// single precision (Assimp's) cannot resolve at the scale of the mesh.
 ImportedMesh import_mesh(const std::filesystem::path& path);
 
 }  // namespace tessim::io

@@ -8,6 +8,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -180,6 +181,134 @@ TEST(LoadMesh, RejectsMalformedFilesNamingFileElementAndReason) {
                       {"big.off", "face 0", "at most 9"}));
 
   EXPECT_TRUE(rejects(dir.write("garbage.xyz", "this is not a mesh\n"), {"garbage.xyz", "import", "Assimp cannot read it"}));
+}
+
+// A UV sphere of radius 1 around `centre` as ASCII PLY in double precision, with its normals.
+std::string sphere_ply(const glm::dvec3& centre, int n = 8) {
+  std::vector<glm::dvec3> unit;
+  std::vector<glm::uvec3> faces;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      const double theta = M_PI * i / n, phi = M_PI * j / n;
+      unit.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      const unsigned a = static_cast<unsigned>(i * 2 * n + j), b = static_cast<unsigned>(i * 2 * n + (j + 1) % (2 * n));
+      faces.emplace_back(a, a + 2 * n, b);
+      faces.emplace_back(b, a + 2 * n, b + 2 * n);
+    }
+  std::ostringstream s;
+  s.precision(17);
+  s << "ply\nformat ascii 1.0\nelement vertex " << unit.size()
+    << "\nproperty double x\nproperty double y\nproperty double z\nproperty double nx\nproperty double ny\n"
+       "property double nz\nelement face "
+    << faces.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const glm::dvec3& u : unit) {
+    const glm::dvec3 p = centre + u;
+    s << p.x << ' ' << p.y << ' ' << p.z << ' ' << u.x << ' ' << u.y << ' ' << u.z << '\n';
+  }
+  for (const glm::uvec3& f : faces) s << "3 " << f.x << ' ' << f.y << ' ' << f.z << '\n';
+  return s.str();
+}
+
+// Faces of 1 or 2 vertices among triangles are left out with a warning naming the first.
+TEST(LoadMesh, WarnsAboutPointAndLineFacesAmongTriangles) {
+  TempDir dir;
+  std::vector<std::string> warnings;
+  const Mesh obj = load_mesh(dir.write("mixed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 2\nf 4\n"),
+                             &warnings);
+  EXPECT_EQ(obj.triangle_count(), 2u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("mixed.obj: face 2: 2 faces of 1 or 2 vertices (points or lines) ignored"), std::string::npos)
+      << warnings[0];
+
+  warnings.clear();
+  const Mesh off = load_mesh(dir.write("mixed.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n2 0 3\n3 0 1 2\n"), &warnings);
+  EXPECT_EQ(off.triangle_count(), 1u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("mixed.off: face 0: 1 face of 1 or 2 vertices"), std::string::npos) << warnings[0];
+
+  // Only triangles: no warning.
+  warnings.clear();
+  (void)load_mesh(dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), &warnings);
+  EXPECT_TRUE(warnings.empty());
+}
+
+// Assimp drops every normal of a mesh with one normal index out of range (and the normals
+// would be computed instead, silently): the file is refused like one with a bad vertex index.
+TEST(LoadMesh, RejectsObjNormalIndicesOutOfRange) {
+  TempDir dir;
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n";
+  EXPECT_TRUE(rejects(dir.write("normal.obj", tri + "f 1//1 2//1 3//5\n"),
+                      {"normal.obj", "face at line 5", "normal index 5 out of range (1 in the file)"}));
+  EXPECT_TRUE(rejects(dir.write("relative.obj", tri + "f 1//-1 2//-1 3//-2\n"),
+                      {"relative.obj", "face at line 5", "normal index -2 out of range (1 defined before this line)"}));
+  EXPECT_TRUE(rejects(dir.write("texture.obj", tri + "vt 0 0\nf 1/1/1 2/2/1 3/1/1\n"),
+                      {"texture.obj", "face at line 6", "texture coordinate index 2 out of range"}));
+  // A positive index may refer to an element defined further down, as Assimp reads it.
+  const Mesh forward = load_mesh(dir.write("forward.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\nvn 0 0 1\n"));
+  EXPECT_TRUE(forward.normals_from_file);
+  EXPECT_EQ(forward.triangle_count(), 1u);
+}
+
+TEST(LoadMesh, RejectsTruncatedAsciiStl) {
+  TempDir dir;
+  const std::string facet =
+      "  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n"
+      "    endloop\n  endfacet\n";
+  const std::string whole = "solid t\n" + facet + facet + "endsolid t\n";
+  EXPECT_EQ(load_mesh(dir.write("whole.stl", whole)).triangle_count(), 2u);
+  // Cut between facets: Assimp loads one triangle without complaint.
+  EXPECT_TRUE(rejects(dir.write("between.stl", "solid t\n" + facet),
+                      {"between.stl", "endsolid", "truncated after 1 facet"}));
+  // Cut inside a facet, and a facet with two vertices.
+  const std::string cut = whole.substr(0, whole.find("vertex 1 0 0", whole.find("endfacet")));
+  EXPECT_TRUE(rejects(dir.write("inside.stl", cut), {"inside.stl", "facet 1 (line 9)", "ends inside this facet"}));
+  std::string two = whole;
+  two.erase(two.find("      vertex 0 1 0\n"), 19);
+  EXPECT_TRUE(rejects(dir.write("two.stl", two), {"two.stl", "facet 0 (line 2)", "2 vertices (a facet has 3)"}));
+  EXPECT_TRUE(rejects(dir.write("word.stl", "solid t\n  facet normal 0 0 1\n    outer loop\n      vertex 0 x 0\n"),
+                      {"word.stl", "facet 0", "expected 3 numbers"}));
+  // The ASCII test models of assimp-testmodels (several solids, an empty one) still load.
+  for (const char* name : {"Spider_ascii.stl", "sphereWithHole.stl", "triangle.stl", "triangle_with_empty_solid.stl",
+                           "triangle_with_two_solids.stl", "Wuson.stl", "Spider_binary.stl"}) {
+    const fs::path model = kModels / "STL" / name;
+    if (!fs::exists(model)) continue;
+    EXPECT_NO_THROW((void)load_mesh(model)) << model;
+  }
+}
+
+// Assimp imports in single precision: a unit sphere 1e7 from the origin keeps a step of 1 and
+// loses its shape (its normals then seem to cancel out). The message says what happened.
+TEST(LoadMesh, RejectsCoordinatesSinglePrecisionCannotResolve) {
+  TempDir dir;
+  EXPECT_TRUE(rejects(dir.write("far.ply", sphere_ply(glm::dvec3(1e7, 0.0, 0.0))),
+                      {"far.ply", "vertex coordinates", "x reaches 1e+07", "single precision", "steps of 1,",
+                       "50 % of the mesh extent 2", "move the mesh near the origin"}));
+  EXPECT_TRUE(rejects(dir.write("far_z.ply", sphere_ply(glm::dvec3(0.0, 0.0, -1e5))),
+                      {"far_z.ply", "z reaches 100001", "single precision"}));
+  // Near enough: the float32 step at 1000 is 6e-5 of a mesh 2 across.
+  const Mesh near = load_mesh(dir.write("near.ply", sphere_ply(glm::dvec3(1000.0, 0.0, 0.0))));
+  EXPECT_EQ(near.triangle_count(), 256u);
+  // Everything at one point far out: kept (a degenerate mesh), with a warning.
+  std::vector<std::string> warnings;
+  const Mesh point = load_mesh(dir.write("point.obj", "v 1e7 1 1\nv 1e7 1 1\nv 1e7 1 1\nf 1 2 3\n"), &warnings);
+  EXPECT_EQ(point.triangle_count(), 1u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("point.obj: vertex coordinates: all vertices import at one position"), std::string::npos)
+      << warnings[0];
+}
+
+// Readers whose node graph lists meshes or children it does not hold (Assimp's RAW reader):
+// read without a crash.
+TEST(LoadMesh, RawModelsLoad) {
+  for (const char* name : {"WithColor.raw", "WithTexture.raw"}) {
+    const fs::path model = kModels / "RAW" / name;
+    if (!fs::exists(model)) GTEST_SKIP() << model << " not installed (assimp-testmodels)";
+    const Mesh mesh = load_mesh(model);
+    EXPECT_GT(mesh.triangle_count(), 0u) << model;
+  }
 }
 
 // Files outside invalid/ that Assimp reads without complaint although they contradict their
