@@ -44,7 +44,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import sweep  # noqa: E402  (shared CSV/JSON writer and reader)
 
 REPO = Path(__file__).resolve().parent.parent
-CACHE_SCHEMA = 1
+CACHE_SCHEMA = 2
 
 # Row parameter -> tess_unit parameter, from `tessim schema` (set by main()).
 RTL_PARAMS = []
@@ -87,6 +87,12 @@ def load_rtl_params(tessim):
     return sch
 
 
+def digest_text(script):
+    """The synthesis script as the digest sees it: its comment lines do not change what Yosys
+    computes, so editing them keeps the recorded costs valid (the RTL is hashed verbatim)."""
+    return b"\n".join(line for line in script.split(b"\n") if not line.lstrip().startswith(b"#"))
+
+
 def snapshot_sources(synth, directory):
     """Copies the RTL and the synthesis script into `directory` (rtl/, scripts/ as in the repo, so
     synth.sh finds the RTL next to itself) and returns the copy of synth.sh and the SHA-256 of
@@ -98,7 +104,7 @@ def snapshot_sources(synth, directory):
     for path in sorted((REPO / "rtl").glob("tess_*.sv")) + [Path(synth)]:
         data = path.read_bytes()
         h.update(path.name.encode())
-        h.update(data)
+        h.update(digest_text(data) if path == Path(synth) else data)
         target = directory / ("scripts" if path == Path(synth) else "rtl") / path.name
         target.write_bytes(data)
     copy = directory / "scripts" / Path(synth).name

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hardware cost of one configuration of the unit with Yosys (SPEC §10, docs/rtl.md):
+# Hardware cost of one configuration of the unit with Yosys (docs/rtl.md: cost method):
 #   - generic `synth` cell count and flip-flops,
 #   - `stat -tech cmos` transistor estimate after flip-flop legalisation (async2sync;
 #     dfflegalize -cell $_DFF_P_ 01), so that every cell has a cost and the total is exact,
