@@ -19,13 +19,7 @@ namespace tessim::app {
 
 namespace {
 
-struct BenchArgs {
-  std::string mesh = "/usr/share/assimp/models/PLY/Wuson.ply";
-  int tess_factor = 8;
-  std::vector<int> int_blocks{1, 2, 4};
-  int repeat = 5;
-  int gpe_cycles = sim::UnitConfig{}.gpe_cycles;
-};
+using BenchArgs = SpeedRunArgs;
 
 void run_bench(const BenchArgs& a) {
   if (a.repeat < 1) throw InputError("command line", "--repeat", "must be at least 1");
@@ -65,19 +59,7 @@ void run_bench(const BenchArgs& a) {
 void register_bench(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* sub = app.add_subcommand("bench", "Measure the speed of the cycle model on a mesh");
-  sub->add_option("mesh", args->mesh, "input mesh")->capture_default_str();
-  sub->add_option("-L,--tess-factor", args->tess_factor, "segments per edge")
-      ->transform(number_check<int>("command line", "-L", "1..64"))
-      ->capture_default_str();
-  sub->add_option("--int", args->int_blocks, "INT block counts to measure")
-      ->transform(number_check<int>("command line", "--int", type_range<int>()))
-      ->capture_default_str();
-  sub->add_option("--gpe-cycles", args->gpe_cycles, "GPE cycles per vertex K")
-      ->transform(number_check<int>("command line", "--gpe-cycles", type_range<int>()))
-      ->capture_default_str();
-  sub->add_option("--repeat", args->repeat, "runs per configuration (median reported)")
-      ->transform(number_check<int>("command line", "--repeat", type_range<int>()))
-      ->capture_default_str();
+  add_speed_run_options(*sub, *args, "INT block counts to measure");
   sub->callback([args] { run_bench(*args); });
 }
 

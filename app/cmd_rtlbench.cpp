@@ -22,12 +22,12 @@ namespace tessim::app {
 
 namespace {
 
-struct RtlBenchArgs {
-  std::string mesh = "/usr/share/assimp/models/PLY/Wuson.ply";
-  int tess_factor = 4;
-  std::vector<int> int_blocks{1, 2, 4};
-  int gpe_cycles = sim::UnitConfig{}.gpe_cycles;
-  int repeat = 3;
+// The RTL is some 50 times slower than the cycle model: a lighter default workload.
+struct RtlBenchArgs : SpeedRunArgs {
+  RtlBenchArgs() {
+    tess_factor = 4;
+    repeat = 3;
+  }
 };
 
 struct Timing {
@@ -101,19 +101,7 @@ void run(const RtlBenchArgs& a) {
 void register_rtlbench(CLI::App& app) {
   auto args = std::make_shared<RtlBenchArgs>();
   CLI::App* sub = app.add_subcommand("rtlbench", "Speed of the Verilated RTL versus the cycle model on a mesh");
-  sub->add_option("mesh", args->mesh, "input mesh")->capture_default_str();
-  sub->add_option("-L,--tess-factor", args->tess_factor, "segments per edge")
-      ->transform(number_check<int>("command line", "-L", "1..64"))
-      ->capture_default_str();
-  sub->add_option("--int", args->int_blocks, "INT block counts (RTL builds n1..n4)")
-      ->transform(number_check<int>("command line", "--int", type_range<int>()))
-      ->capture_default_str();
-  sub->add_option("--gpe-cycles", args->gpe_cycles, "GPE cycles per vertex K")
-      ->transform(number_check<int>("command line", "--gpe-cycles", type_range<int>()))
-      ->capture_default_str();
-  sub->add_option("--repeat", args->repeat, "runs per configuration (median reported)")
-      ->transform(number_check<int>("command line", "--repeat", type_range<int>()))
-      ->capture_default_str();
+  add_speed_run_options(*sub, *args, "INT block counts (RTL builds n1..n4)");
   sub->callback([args] { run(*args); });
 }
 

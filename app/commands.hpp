@@ -15,6 +15,7 @@
 #include "model/error.hpp"
 
 #include "model/normal_mode.hpp"
+#include "sim/config.hpp"
 
 namespace tessim::app {
 
@@ -58,6 +59,16 @@ CLI::Validator number_check(std::string source, std::string element, std::string
   };
   return CLI::Validator(check, "", "number");
 }
+
+// The workload both speed commands (bench, rtlbench) measure, and its options.
+struct SpeedRunArgs {
+  std::string mesh = "/usr/share/assimp/models/PLY/Wuson.ply";
+  int tess_factor = 8;
+  std::vector<int> int_blocks{1, 2, 4};
+  int gpe_cycles = sim::EnvironmentConfig{}.gpe_cycles;
+  int repeat = 5;
+};
+void add_speed_run_options(CLI::App& sub, SpeedRunArgs& args, const char* int_blocks_help);
 
 // The range of T as text, for number_check where the option documents none.
 template <class T>

@@ -43,4 +43,20 @@ void check_output_paths(const std::vector<OutputPath>& outputs) {
   }
 }
 
+void add_speed_run_options(CLI::App& sub, SpeedRunArgs& args, const char* int_blocks_help) {
+  sub.add_option("mesh", args.mesh, "input mesh")->capture_default_str();
+  sub.add_option("-L,--tess-factor", args.tess_factor, "segments per edge")
+      ->transform(number_check<int>("command line", "-L", "1..64"))
+      ->capture_default_str();
+  sub.add_option("--int", args.int_blocks, int_blocks_help)
+      ->transform(number_check<int>("command line", "--int", type_range<int>()))
+      ->capture_default_str();
+  sub.add_option("--gpe-cycles", args.gpe_cycles, "GPE cycles per vertex K")
+      ->transform(number_check<int>("command line", "--gpe-cycles", type_range<int>()))
+      ->capture_default_str();
+  sub.add_option("--repeat", args.repeat, "runs per configuration (median reported)")
+      ->transform(number_check<int>("command line", "--repeat", type_range<int>()))
+      ->capture_default_str();
+}
+
 }  // namespace tessim::app

@@ -83,12 +83,11 @@ ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& s
 }
 
 bool ArithmeticCheck::check(const VertexFx& v) {
-  if (!cached_ || v.id != cached_id_) {
+  if (patch_id_ != v.id) {
     const TriangleFx tri = triangle_(v.id);
     patch_ = make_patch(dequantized_input(tri, cfg_.format), cfg_.normals);
     normal_bound_ = normal_error_bound(tri, cfg_.normals, cfg_.format);
-    cached_id_ = v.id;
-    cached_ = true;
+    patch_id_ = v.id;
   }
   const double scale = static_cast<double>(cfg_.format.bary_one());
   const PnVertex ref = eval_bernstein(patch_, static_cast<double>(v.u) / scale, static_cast<double>(v.v) / scale);
@@ -125,7 +124,7 @@ MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitC
 }
 
 void MeshErrors::add(const VertexFx& v) {
-  if (!cached_ || v.id != cached_id_) {
+  if (patch_id_ != v.id) {
     const glm::uvec3& tri = mesh_.triangles[v.id];
     PnInput in;
     for (int c = 0; c < 3; ++c) {
@@ -133,8 +132,7 @@ void MeshErrors::add(const VertexFx& v) {
       in.n[c] = mesh_.normals[tri[c]];
     }
     patch_ = make_patch(in, cfg_.normals);
-    cached_id_ = v.id;
-    cached_ = true;
+    patch_id_ = v.id;
   }
   // The reference at the exact domain point, as `tessim tessellate` evaluates it.
   const double segments = static_cast<double>(v.L);

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -73,8 +74,7 @@ class ArithmeticCheck {
   UnitConfig cfg_;
   ErrorBudget budget_;
   double diagonal_ = 1.0;
-  std::uint32_t cached_id_ = 0;
-  bool cached_ = false;
+  std::optional<std::uint32_t> patch_id_;  // the patch whose reference patch_ holds
   PnPatch patch_;
   double normal_bound_ = 0;
   ErrorAccumulator acc_;
@@ -93,8 +93,7 @@ class MeshErrors {
   HostScaling scaling_;
   UnitConfig cfg_;
   double diagonal_ = 1.0;
-  std::uint32_t cached_id_ = 0;
-  bool cached_ = false;
+  std::optional<std::uint32_t> patch_id_;
   PnPatch patch_;
   ErrorAccumulator acc_;
 };
