@@ -24,7 +24,7 @@ constexpr std::uint64_t kMaxRenderedTriangles = std::uint64_t{1} << 24;
 
 struct RenderArgs {
   std::string mesh;
-  int factor = 4;
+  PatternOptions pattern;
   std::string normals = "quadratic";
   std::string compare;
   bool wireframe = false;
@@ -59,33 +59,32 @@ RenderMesh flat_shaded(const Mesh& mesh) {
 
 // The PN tessellation of every input triangle, patch boundaries flagged as primary edges so
 // that the wireframe shows the input triangles darker than the refinement inside them.
-RenderMesh pn_tessellated(const Mesh& mesh, int L, NormalMode mode) {
-  const std::vector<glm::uvec3> local = pattern_triangles(L);
-  const std::vector<DomainPoint> points = pattern_points(L);
-  auto on_same_side = [&](unsigned a, unsigned b) {
-    const DomainPoint p = points[a], q = points[b];
-    return (p.j == 0 && q.j == 0) || (p.k == 0 && q.k == 0) || (p.j + p.k == L && q.j + q.k == L);
+RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const TessellationCounts& counts,
+                          NormalMode mode) {
+  // An edge of the pattern lies on the patch boundary when both ends are on one side of the
+  // domain (u = 0, v = 0 or w = 0).
+  auto on_same_side = [](const glm::dvec2& p, const glm::dvec2& q) {
+    constexpr double eps = 1e-12;
+    return (p.x == 0.0 && q.x == 0.0) || (p.y == 0.0 && q.y == 0.0) ||
+           (std::abs(p.x + p.y - 1.0) < eps && std::abs(q.x + q.y - 1.0) < eps);
   };
-  std::vector<std::uint8_t> local_flags;
-  for (const glm::uvec3& t : local) {
-    std::uint8_t flags = 0;
-    for (int e = 0; e < 3; ++e)
-      if (on_same_side(t[e], t[(e + 1) % 3])) flags |= static_cast<std::uint8_t>(1u << e);
-    local_flags.push_back(flags);
-  }
-
   RenderMesh out;
-  const std::size_t patches = mesh.triangles.size();
-  out.positions.reserve(patches * points.size());
-  out.normals.reserve(patches * points.size());
-  out.triangles.reserve(patches * local.size());
-  out.edge_flags.reserve(patches * local.size());
-  tessellate_mesh(mesh, L, mode, [&](const PatchView& patch) {
+  out.positions.reserve(counts.vertices);
+  out.normals.reserve(counts.vertices);
+  out.triangles.reserve(counts.triangles);
+  out.edge_flags.reserve(counts.triangles);
+  tessellate_mesh(mesh, settings, mode, [&](const PatchView& patch) {
     const auto base = static_cast<unsigned>(out.positions.size());
     out.positions.insert(out.positions.end(), patch.positions.begin(), patch.positions.end());
     out.normals.insert(out.normals.end(), patch.normals.begin(), patch.normals.end());
-    for (const glm::uvec3& t : local) out.triangles.push_back(t + glm::uvec3(base));
-    out.edge_flags.insert(out.edge_flags.end(), local_flags.begin(), local_flags.end());
+    for (std::size_t i = 0; i + 2 < patch.indices.size(); i += 3) {
+      const glm::uvec3 t(patch.indices[i], patch.indices[i + 1], patch.indices[i + 2]);
+      std::uint8_t flags = 0;
+      for (int e = 0; e < 3; ++e)
+        if (on_same_side(patch.domain[t[e]], patch.domain[t[(e + 1) % 3]])) flags |= static_cast<std::uint8_t>(1u << e);
+      out.triangles.push_back(t + glm::uvec3(base));
+      out.edge_flags.push_back(flags);
+    }
   });
   return out;
 }
@@ -93,7 +92,7 @@ RenderMesh pn_tessellated(const Mesh& mesh, int L, NormalMode mode) {
 void run_render(const RenderArgs& args) {
   // Validate everything before loading or computing anything.
   const glm::ivec2 size = parse_image_size(args.size, "--size");
-  check_tess_factor("render", args.factor);
+  const TessSettings settings = args.pattern.settings("render");
   const NormalMode mode = parse_normals_option("render", args.normals);
   const bool compare = !args.compare.empty();
   if (compare && args.compare != "flat")
@@ -115,14 +114,16 @@ void run_render(const RenderArgs& args) {
   check_output_paths({{"-o", output.string()}});
 
   const Mesh mesh = load_mesh(args.mesh);
-  const std::uint64_t rendered = static_cast<std::uint64_t>(mesh.triangles.size()) * args.factor * args.factor;
-  if (rendered > kMaxRenderedTriangles)
-    throw InputError(args.mesh, "-L", std::to_string(rendered) + " tessellated triangles exceed the renderer's limit of " +
-                                          std::to_string(kMaxRenderedTriangles) + "; lower -L");
+  PatternCache patterns(settings);
+  const TessellationCounts counts = count_tessellation(mesh, patterns);
+  if (counts.triangles > kMaxRenderedTriangles)
+    throw InputError(args.mesh, "-L", std::to_string(counts.triangles) +
+                                          " tessellated triangles exceed the renderer's limit of " +
+                                          std::to_string(kMaxRenderedTriangles) + "; lower the factors");
 
   std::vector<RenderMesh> panels;
   if (compare) panels.push_back(flat_shaded(mesh));
-  panels.push_back(pn_tessellated(mesh, args.factor, mode));
+  panels.push_back(pn_tessellated(mesh, settings, counts, mode));
 
   // One camera for all panels, framed on everything drawn (the PN surface bulges beyond the
   // input vertices).
@@ -131,7 +132,19 @@ void run_render(const RenderArgs& args) {
     validate(panel, mesh.source.empty() ? args.mesh : mesh.source);
     all_points.insert(all_points.end(), panel.positions.begin(), panel.positions.end());
   }
-  const Camera camera = frame_camera(all_points, view, size.x, size.y);
+  // Adaptive factors are chosen for a camera: the picture is taken from it, so that what is near
+  // (fine) and what is far (coarse) can be seen as the factors saw them.
+  Camera camera;
+  if (settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive) {
+    camera.eye = settings.camera.eye;
+    camera.target = settings.camera.target;
+    camera.up = view.up == UpAxis::Y ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    if (glm::length(glm::cross(camera.up, camera.target - camera.eye)) == 0.0) camera.up = glm::dvec3(1, 0, 0);
+    camera.fov_y_deg = settings.camera.fov_deg;
+    camera.aspect = static_cast<double>(size.x) / size.y;
+  } else {
+    camera = frame_camera(all_points, view, size.x, size.y);
+  }
   all_points = {};
 
   RenderOptions options;
@@ -155,9 +168,9 @@ void run_render(const RenderArgs& args) {
   }
   writer.finish();
 
-  std::printf("wrote %s: %dx%d, %zu input triangles, %zu PN triangles (L=%d, %s normals)%s\n",
+  std::printf("wrote %s: %dx%d, %zu input triangles, %zu PN triangles (%s, %s normals)%s\n",
               output.string().c_str(), total_width, size.y, mesh.triangles.size(),
-              panels.back().triangles.size(), args.factor, std::string(to_string(mode)).c_str(),
+              panels.back().triangles.size(), settings.describe().c_str(), std::string(to_string(mode)).c_str(),
               compare ? ", left: flat-shaded input" : "");
 }
 
@@ -167,9 +180,7 @@ void register_render(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render the PN tessellation of a mesh to PNG or EXR");
   cmd->add_option("mesh", args->mesh, "Input mesh (OBJ, PLY, STL, OFF, ... via Assimp)")->required();
-  cmd->add_option("-L,--tess-factor,--factor", args->factor, "Tessellation factor: segments per edge (1..64)")
-      ->transform(number_check<int>("render", "-L", "1..64"))
-      ->capture_default_str();
+  add_pattern_options(*cmd, args->pattern, "render");
   cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
       ->capture_default_str();
   cmd->add_option("--compare", args->compare,

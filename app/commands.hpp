@@ -14,6 +14,7 @@
 
 #include "model/error.hpp"
 
+#include "model/factors.hpp"
 #include "model/normal_mode.hpp"
 #include "sim/config.hpp"
 
@@ -23,6 +24,25 @@ namespace tessim::app {
 // the command and the option. The cycle-model commands check theirs through sim/params.hpp.
 void check_tess_factor(const char* command, int factor);
 NormalMode parse_normals_option(const char* command, const std::string& text);
+
+// The pattern options of the reference commands (tessellate, render; docs/patterns.md):
+//   -L N                                  uniform pattern (the unit's own), the default
+//   --partitioning P [-L N]               D3D11 pattern, every factor N
+//   --outer A,B,C [--inner F] [--partitioning P]   D3D11 pattern, these factors (inner
+//                                         default: the largest outer factor)
+//   --adaptive screen --camera eye=x,y,z[,target=x,y,z][,fov=deg] [--viewport WxH]
+//          [--pixels-per-segment P] [--partitioning P]   D3D11 pattern, factors per edge
+struct PatternOptions {
+  int factor = 4;
+  std::string partitioning;
+  std::string outer, inner;
+  std::string adaptive, camera, viewport = "1280x720";
+  double pixels_per_segment = 16.0;
+
+  // Throws InputError(command, option, reason).
+  TessSettings settings(const char* command) const;
+};
+void add_pattern_options(CLI::App& cmd, PatternOptions& options, const char* command);
 
 // Checks the text of a numeric option before CLI11 converts it, so that a bad value is an
 // InputError(source, element, reason) quoting the text as given: "'abc' is not an integer",

@@ -1,5 +1,7 @@
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <system_error>
@@ -7,6 +9,7 @@
 #include "app/commands.hpp"
 #include "model/error.hpp"
 #include "model/pattern.hpp"
+#include "render/raster.hpp"
 
 namespace tessim::app {
 
@@ -57,6 +60,128 @@ void add_speed_run_options(CLI::App& sub, SpeedRunArgs& args, const char* int_bl
   sub.add_option("--repeat", args.repeat, "runs per configuration (median reported)")
       ->transform(number_check<int>("command line", "--repeat", type_range<int>()))
       ->capture_default_str();
+}
+
+namespace {
+
+// "a,b,c" as numbers; each must parse whole.
+std::vector<double> parse_numbers(const char* command, const char* option, const std::string& text) {
+  std::vector<double> out;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size())
+      throw InputError(command, option, "'" + item + "' in '" + text + "' is not a number");
+    out.push_back(x);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+glm::dvec3 parse_point(const char* command, const std::string& key, const std::string& text) {
+  const std::vector<double> v = parse_numbers(command, "--camera", text);
+  if (v.size() != 3) throw InputError(command, "--camera", key + "=" + text + " needs three coordinates x,y,z");
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) {
+  cmd.add_option("-L,--tess-factor,--factor", o.factor,
+                 "Tessellation factor: segments per edge (1..64) of the uniform pattern, or every factor of the "
+                 "D3D11 pattern with --partitioning")
+      ->transform(number_check<int>(command, "-L", "1..64"))
+      ->capture_default_str();
+  cmd.add_option("--partitioning", o.partitioning,
+                 "D3D11 pattern spacing: integer, pow2, fractional_odd, fractional_even (default: the uniform "
+                 "pattern; integer with --outer or --adaptive)");
+  cmd.add_option("--outer", o.outer, "D3D11 outer factors A,B,C (edges u=0, v=0, w=0), the same for every patch");
+  cmd.add_option("--inner", o.inner, "D3D11 inner factor with --outer (default: the largest outer factor)");
+  cmd.add_option("--adaptive", o.adaptive,
+                 "'screen': D3D11 factors per edge from the edge's projected length (docs/patterns.md)");
+  cmd.add_option("--camera", o.camera, "with --adaptive: eye=x,y,z[,target=x,y,z][,fov=deg] (fov default 45)");
+  cmd.add_option("--viewport", o.viewport, "with --adaptive: viewport WxH in pixels")->capture_default_str();
+  cmd.add_option("--pixels-per-segment", o.pixels_per_segment, "with --adaptive: target on-screen length of a segment")
+      ->transform(number_check<double>(command, "--pixels-per-segment", "positive numbers"))
+      ->capture_default_str();
+}
+
+TessSettings PatternOptions::settings(const char* command) const {
+  TessSettings s;
+  s.L = factor;
+  check_tess_factor(command, factor);
+  const bool fixed = !outer.empty() || !inner.empty();
+  const bool adaptive_on = !adaptive.empty();
+  if (fixed && adaptive_on) throw InputError(command, "--outer", "cannot be combined with --adaptive");
+  if (!inner.empty() && outer.empty()) throw InputError(command, "--inner", "needs --outer");
+  if (!adaptive_on && (!camera.empty()))
+    throw InputError(command, "--camera", "needs --adaptive screen");
+  if (partitioning.empty() && !fixed && !adaptive_on) return s;  // the uniform pattern
+
+  s.kind = PatternKind::D3D11;
+  if (!partitioning.empty()) {
+    const auto p = parse_partitioning(partitioning);
+    if (!p)
+      throw InputError(command, "--partitioning",
+                       "'" + partitioning + "' is not one of integer, pow2, fractional_odd, fractional_even");
+    s.partitioning = *p;
+  }
+  const auto L = static_cast<float>(factor);
+  s.outer = {L, L, L};
+  s.inner = L;
+  if (fixed) {
+    const std::vector<double> v = parse_numbers(command, "--outer", outer);
+    if (v.size() != 3) throw InputError(command, "--outer", "'" + outer + "' needs three factors A,B,C");
+    s.outer = {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+    if (inner.empty()) {
+      s.inner = std::max({s.outer[0], s.outer[1], s.outer[2]});
+    } else {
+      const std::vector<double> f = parse_numbers(command, "--inner", inner);
+      if (f.size() != 1) throw InputError(command, "--inner", "'" + inner + "' needs one factor");
+      s.inner = static_cast<float>(f[0]);
+    }
+  }
+  if (adaptive_on) {
+    if (adaptive != "screen") throw InputError(command, "--adaptive", "'" + adaptive + "' is not 'screen'");
+    if (camera.empty()) throw InputError(command, "--camera", "--adaptive screen needs --camera eye=x,y,z");
+    s.source = FactorSource::Adaptive;
+    bool has_eye = false;
+    std::size_t start = 0;
+    // key=value items; a value's own commas belong to it until the next "key=".
+    std::vector<std::pair<std::string, std::string>> items;
+    while (start < camera.size()) {
+      const std::size_t eq = camera.find('=', start);
+      if (eq == std::string::npos) throw InputError(command, "--camera", "'" + camera + "' is not key=value,...");
+      const std::string key = camera.substr(start, eq - start);
+      std::size_t next = camera.size();
+      for (const char* k : {",eye=", ",target=", ",fov="}) next = std::min(next, camera.find(k, eq));
+      items.emplace_back(key, camera.substr(eq + 1, next - eq - 1));
+      start = next == camera.size() ? next : next + 1;
+    }
+    for (const auto& [key, value] : items) {
+      if (key == "eye") {
+        s.camera.eye = parse_point(command, key, value);
+        has_eye = true;
+      } else if (key == "target") {
+        s.camera.target = parse_point(command, key, value);
+      } else if (key == "fov") {
+        s.camera.fov_deg = parse_numbers(command, "--camera", value).at(0);
+      } else {
+        throw InputError(command, "--camera", "unknown key '" + key + "' (eye, target, fov)");
+      }
+    }
+    if (!has_eye) throw InputError(command, "--camera", "needs eye=x,y,z");
+    const glm::ivec2 size = parse_image_size(viewport, "--viewport");
+    s.camera.width = size.x;
+    s.camera.height = size.y;
+    s.pixels_per_segment = pixels_per_segment;
+  }
+  validate(s, command);
+  return s;
 }
 
 }  // namespace tessim::app

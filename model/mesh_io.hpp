@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,9 +55,15 @@ class MeshWriter {
   // Appends one patch of pattern_vertex_count(L) vertices in pattern order with
   // pattern_triangles(L) as its topology (indices offset by the vertices written so far).
   void add_patch(int L, const glm::dvec3* positions, const glm::dvec3* normals);
+  // Appends one patch of any pattern: its vertices and its triangles as local indices.
+  void add_patch(std::span<const glm::dvec3> positions, std::span<const glm::dvec3> normals,
+                 std::span<const std::uint32_t> indices);
   void finish();  // checks the totals, flushes and renames into place
 
  private:
+  // L > 0: a uniform patch of factor L (PLY keeps only the factor); 0: any other pattern.
+  void append(int L, std::span<const glm::dvec3> positions, std::span<const glm::dvec3> normals,
+              std::span<const std::uint32_t> indices);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

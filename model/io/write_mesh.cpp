@@ -57,9 +57,20 @@ struct MeshWriter::Impl {
   std::uint64_t vertices = 0;
   std::uint64_t triangles = 0;
   bool finished = false;
-  // PLY keeps all faces after all vertices; the faces follow from the pattern, so only the
-  // sequence of factors is kept (run-length coded) and the face list is generated in finish().
-  std::vector<std::pair<int, std::uint64_t>> factor_runs;
+  // PLY keeps all faces after all vertices. A uniform patch's faces follow from its factor, so
+  // only the sequence of factors is kept (run-length coded) and its faces are generated in
+  // finish(); other patches keep their faces (global indices) in explicit_faces, and a run of
+  // factor 0 stands for `count` such patches holding `vertices` vertices.
+  struct Run {
+    int L;
+    std::uint64_t count;
+    std::uint64_t vertices;  // factor 0: the vertices of the run's patches
+    std::uint64_t faces;     // factor 0: the triangles of the run's patches
+  };
+  std::vector<Run> runs;
+  std::vector<std::uint32_t> explicit_faces;
+  int uniform_L = 0;  // the factor whose faces uniform_indices holds
+  std::vector<std::uint32_t> uniform_indices;
   std::string buffer;
 
   void write_buffer() {
@@ -93,11 +104,31 @@ MeshWriter::MeshWriter(const std::filesystem::path& path, std::uint64_t total_ve
 MeshWriter::~MeshWriter() = default;
 
 void MeshWriter::add_patch(int L, const glm::dvec3* positions, const glm::dvec3* normals) {
+  if (L < 1 || L > kMaxTessFactor) throw std::logic_error("MeshWriter::add_patch: factor " + std::to_string(L) + " out of range");
+  const auto n = static_cast<std::size_t>(pattern_vertex_count(L));
+  Impl& w = *impl_;
+  if (w.uniform_L != L) {  // the flat index list of the last factor, for OBJ faces
+    w.uniform_L = L;
+    w.uniform_indices.clear();
+    for (const glm::uvec3& t : pattern_triangles(L)) w.uniform_indices.insert(w.uniform_indices.end(), {t.x, t.y, t.z});
+  }
+  append(L, {positions, n}, {normals, n}, w.uniform_indices);
+}
+
+void MeshWriter::add_patch(std::span<const glm::dvec3> positions, std::span<const glm::dvec3> normals,
+                           std::span<const std::uint32_t> indices) {
+  for (std::uint32_t i : indices)
+    if (i >= positions.size()) throw std::logic_error("MeshWriter::add_patch: index " + std::to_string(i) + " out of range");
+  append(0, positions, normals, indices);
+}
+
+void MeshWriter::append(int L, std::span<const glm::dvec3> positions, std::span<const glm::dvec3> normals,
+                        std::span<const std::uint32_t> indices) {
   Impl& w = *impl_;
   if (w.finished) throw std::logic_error("MeshWriter::add_patch after finish()");
-  if (L < 1 || L > kMaxTessFactor) throw std::logic_error("MeshWriter::add_patch: factor " + std::to_string(L) + " out of range");
-  const auto n = static_cast<std::uint64_t>(pattern_vertex_count(L));
-  const auto t = static_cast<std::uint64_t>(pattern_triangle_count(L));
+  const std::uint64_t n = positions.size(), t = indices.size() / 3;
+  if (normals.size() != n || indices.size() % 3 != 0)
+    throw std::logic_error("MeshWriter::add_patch: mismatched positions, normals and indices");
   if (w.vertices + n > w.total_vertices || w.triangles + t > w.total_triangles)
     throw std::logic_error("MeshWriter::add_patch: more than the declared " + std::to_string(w.total_vertices) +
                            " vertices / " + std::to_string(w.total_triangles) + " triangles");
@@ -108,17 +139,25 @@ void MeshWriter::add_patch(int L, const glm::dvec3* positions, const glm::dvec3*
       const double record[6] = {positions[i].x, positions[i].y, positions[i].z, normals[i].x, normals[i].y, normals[i].z};
       append_raw(s, record, sizeof record);
     }
-    if (!w.factor_runs.empty() && w.factor_runs.back().first == L) ++w.factor_runs.back().second;
-    else w.factor_runs.emplace_back(L, 1);
+    // Faces come after all vertices: a uniform patch is remembered by its factor, any other
+    // by its faces.
+    if (w.runs.empty() || w.runs.back().L != L) w.runs.push_back({L, 0, 0, 0});
+    Impl::Run& run = w.runs.back();
+    ++run.count;
+    if (L == 0) {
+      run.vertices += n;
+      run.faces += t;
+      for (std::uint32_t i : indices) w.explicit_faces.push_back(static_cast<std::uint32_t>(w.vertices + i));
+    }
   } else {
     for (std::uint64_t i = 0; i < n; ++i) {
       append_obj_vec(s, "v", positions[i]);
       append_obj_vec(s, "vn", normals[i]);
     }
-    for (const glm::uvec3& tri : pattern_triangles(L)) {
+    for (std::uint64_t f = 0; f < t; ++f) {
       s += 'f';
-      for (int c = 0; c < 3; ++c) {
-        const std::string index = std::to_string(w.vertices + tri[c] + 1);  // OBJ counts from 1
+      for (std::uint64_t c = 0; c < 3; ++c) {
+        const std::string index = std::to_string(w.vertices + indices[3 * f + c] + 1);  // OBJ counts from 1
         s += ' ';
         s += index;
         s += "//";
@@ -141,7 +180,20 @@ void MeshWriter::finish() {
                            " triangles were written");
   if (w.is_ply) {
     std::uint32_t base = 0;
-    for (const auto& [L, count] : w.factor_runs) {
+    std::size_t next_explicit = 0;
+    for (const Impl::Run& run : w.runs) {
+      if (run.L == 0) {
+        for (std::uint64_t t = 0; t < run.faces; ++t, next_explicit += 3) {
+          const unsigned char corners = 3;
+          append_raw(w.buffer, &corners, 1);
+          append_raw(w.buffer, &w.explicit_faces[next_explicit], 3 * sizeof(std::uint32_t));
+          if (w.buffer.size() > (1u << 20)) w.write_buffer();
+        }
+        base += static_cast<std::uint32_t>(run.vertices);
+        continue;
+      }
+      const int L = run.L;
+      const std::uint64_t count = run.count;
       const std::vector<glm::uvec3> pattern = pattern_triangles(L);
       for (std::uint64_t p = 0; p < count; ++p) {
         for (const glm::uvec3& tri : pattern) {
