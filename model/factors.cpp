@@ -20,7 +20,7 @@ std::string number(double x) {
 }  // namespace
 
 std::string TessSettings::describe() const {
-  if (kind == PatternKind::Uniform) return "uniform L=" + std::to_string(L);
+  if (kind == PatternKind::Uniform) return "L=" + std::to_string(L);
   std::string s = partitioning_name(partitioning);
   if (source == FactorSource::Fixed) {
     s += " outer " + number(outer[0]) + "," + number(outer[1]) + "," + number(outer[2]) + " inner " + number(inner);

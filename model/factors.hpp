@@ -42,7 +42,7 @@ struct TessSettings {
   ScreenCamera camera;                // adaptive
   double pixels_per_segment = 16.0;   // adaptive: target length of one edge segment on screen
 
-  // One line for summaries: "uniform L=4", "integer outer 3,4,5 inner 4", "fractional_odd
+  // One line for summaries: "L=4" (the uniform pattern), "integer outer 3,4,5 inner 4", "fractional_odd
   // adaptive (camera ...)".
   std::string describe() const;
 };
