@@ -26,7 +26,10 @@ inline std::string shell_quote(const std::string& s) {
 // `scratch` holds the captured streams (removed afterwards).
 inline TessimRun run_tessim(const std::vector<std::string>& args, const std::filesystem::path& scratch) {
   std::string command = shell_quote(TESSIM_BINARY);
-  for (const std::string& a : args) command += " " + shell_quote(a);
+  for (const std::string& a : args) {
+    command += ' ';  // not " " + ...: GCC 12 misreports that as an overlapping copy (-Wrestrict)
+    command += shell_quote(a);
+  }
   const auto out = scratch / "stdout.txt", err = scratch / "stderr.txt";
   command += " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string());
   const int raw = std::system(command.c_str());
