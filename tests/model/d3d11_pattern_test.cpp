@@ -214,6 +214,15 @@ TEST(D3D11Pattern, OneThirdIsFixed0x5555) {
     const Fixed16 w = kFixed16One - q.u - q.v;
     EXPECT_EQ(std::min({q.u, q.v, w}), 0x38e3) << i;
   }
+  // L = 64: the innermost ring (r = 31) sits at (31 * 0x400 * 0xaaaa + 0x8000) >> 16 = 0x52aa
+  // from each edge (0xaaab for 2/3 would give 0x52ab).
+  const D3D11Pattern big = make(64, 64, 64, 64, Partitioning::integer);
+  Fixed16 innermost = 0;
+  for (std::size_t i = 0; i + 1 < big.points.size(); ++i) {  // all but the centre
+    const FixedUV q = big.points[i];
+    innermost = std::max(innermost, std::min({q.u, q.v, kFixed16One - q.u - q.v}));
+  }
+  EXPECT_EQ(innermost, 0x52aa);
   // An even pattern ends in the centre (0x5555, 0x5555).
   const D3D11Pattern even = make(4, 4, 4, 4, Partitioning::integer);
   EXPECT_EQ(even.points.back().u, 0x5555);
