@@ -110,6 +110,7 @@ void register_render(CLI::App& app);
 void register_sim(CLI::App& app);
 void register_bench(CLI::App& app);
 void register_schema(CLI::App& app);
+void register_pattern(CLI::App& app);
 #ifdef TESSIM_HAVE_COSIM
 void register_cosim(CLI::App& app);
 void register_rtlbench(CLI::App& app);

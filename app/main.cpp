@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   tessim::app::register_sim(app);
   tessim::app::register_bench(app);
   tessim::app::register_schema(app);
+  tessim::app::register_pattern(app);
 #ifdef TESSIM_HAVE_COSIM
   tessim::app::register_cosim(app);
   tessim::app::register_rtlbench(app);
