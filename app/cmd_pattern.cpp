@@ -34,41 +34,6 @@ struct PatternArgs {
   std::string size = "1024x900";
 };
 
-std::string trim(const std::string& s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  return s.substr(first, s.find_last_not_of(" \t") - first + 1);
-}
-
-// A factor as the tessellator receives it: a float. NaN and infinities are accepted (NaN and
-// values <= 0 cull the patch, large values clamp), so only non-numbers are errors.
-float parse_factor(const std::string& text, const char* option) {
-  const std::string t = trim(text);
-  char* end = nullptr;
-  errno = 0;
-  const double value = t.empty() ? 0.0 : std::strtod(t.c_str(), &end);
-  if (t.empty() || end != t.c_str() + t.size())
-    throw InputError("pattern", option, "'" + text + "' is not a number");
-  if (std::isfinite(value) && std::abs(value) > FLT_MAX)  // beyond float range: as D3D11 would see it
-    return value > 0 ? INFINITY : -INFINITY;
-  return static_cast<float>(value);
-}
-
-std::array<float, 3> parse_outer(const std::string& text) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    parts.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  if (parts.size() != 3)
-    throw InputError("pattern", "--outer",
-                     "expected 3 comma-separated factors e0,e1,e2 (edges u=0, v=0, w=0), got " +
-                         std::to_string(parts.size()));
-  return {parse_factor(parts[0], "--outer"), parse_factor(parts[1], "--outer"), parse_factor(parts[2], "--outer")};
-}
 
 std::string hex(Fixed16 x) {
   char buf[16];
@@ -256,12 +221,9 @@ void print_json(const D3D11Pattern& p, Partitioning partitioning, Winding windin
 
 void run_pattern(const PatternArgs& args) {
   // All options are checked before anything is computed or written.
-  const std::array<float, 3> outer = parse_outer(args.outer);
-  const float inner = parse_factor(args.inner, "--inner");
-  const auto partitioning = parse_partitioning(args.partitioning);
-  if (!partitioning)
-    throw InputError("pattern", "--partitioning",
-                     "'" + args.partitioning + "' is not one of integer, pow2, fractional_odd, fractional_even");
+  const std::array<float, 3> outer = parse_outer_factors("pattern", args.outer);
+  const float inner = parse_factor("pattern", "--inner", args.inner);
+  const Partitioning partitioning = parse_partitioning_option("pattern", args.partitioning);
   const auto winding = parse_winding(args.winding);
   if (!winding) throw InputError("pattern", "--winding", "'" + args.winding + "' is not one of ccw, cw");
   const std::filesystem::path output = args.output;
@@ -271,12 +233,12 @@ void run_pattern(const PatternArgs& args) {
     throw InputError(args.output, "output", "unsupported extension '" + output.extension().string() + "' (use .svg or .png)");
   if (extension == ".png") parse_image_size(args.size, "--size");
 
-  const D3D11Pattern p = d3d11_tri_pattern(outer, inner, *partitioning, *winding);
-  if (extension == ".svg") write_svg(p, *partitioning, output);
+  const D3D11Pattern p = d3d11_tri_pattern(outer, inner, partitioning, *winding);
+  if (extension == ".svg") write_svg(p, partitioning, output);
   if (extension == ".png") write_png(p, output, args.size);
 
-  if (args.json) print_json(p, *partitioning, *winding);
-  else print_text(p, *partitioning, *winding);
+  if (args.json) print_json(p, partitioning, *winding);
+  else print_text(p, partitioning, *winding);
 }
 
 }  // namespace

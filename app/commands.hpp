@@ -25,6 +25,14 @@ namespace tessim::app {
 void check_tess_factor(const char* command, int factor);
 NormalMode parse_normals_option(const char* command, const std::string& text);
 
+// A tessellation factor as the tessellator receives it: a float. NaN and infinities are
+// accepted (NaN and values <= 0 cull the patch, large values clamp; a number beyond the float
+// range becomes an infinity, as D3D11 would see it), so only non-numbers are errors.
+float parse_factor(const char* command, const char* option, const std::string& text);
+// "e0,e1,e2": the three outer factors (edges u = 0, v = 0, w = 0).
+std::array<float, 3> parse_outer_factors(const char* command, const std::string& text);
+Partitioning parse_partitioning_option(const char* command, const std::string& text);
+
 // The pattern options of the reference commands (tessellate, render; docs/patterns.md):
 //   -L N                                  uniform pattern (the unit's own), the default
 //   --partitioning P [-L N]               D3D11 pattern, every factor N

@@ -1,7 +1,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
+#include <optional>
 #include <filesystem>
 #include <string>
 #include <system_error>
@@ -90,6 +93,42 @@ glm::dvec3 parse_point(const char* command, const std::string& key, const std::s
 
 }  // namespace
 
+float parse_factor(const char* command, const char* option, const std::string& text) {
+  const std::size_t first = text.find_first_not_of(" \t");
+  const std::string t = first == std::string::npos ? "" : text.substr(first, text.find_last_not_of(" \t") - first + 1);
+  char* end = nullptr;
+  const double value = t.empty() ? 0.0 : std::strtod(t.c_str(), &end);
+  if (t.empty() || end != t.c_str() + t.size()) throw InputError(command, option, "'" + text + "' is not a number");
+  if (std::isfinite(value) && std::abs(value) > std::numeric_limits<float>::max())
+    return value > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
+  return static_cast<float>(value);
+}
+
+std::array<float, 3> parse_outer_factors(const char* command, const std::string& text) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    parts.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (parts.size() != 3)
+    throw InputError(command, "--outer",
+                     "expected 3 comma-separated factors e0,e1,e2 (edges u=0, v=0, w=0), got " +
+                         std::to_string(parts.size()));
+  return {parse_factor(command, "--outer", parts[0]), parse_factor(command, "--outer", parts[1]),
+          parse_factor(command, "--outer", parts[2])};
+}
+
+Partitioning parse_partitioning_option(const char* command, const std::string& text) {
+  const std::optional<Partitioning> p = parse_partitioning(text);
+  if (!p)
+    throw InputError(command, "--partitioning",
+                     "'" + text + "' is not one of integer, pow2, fractional_odd, fractional_even");
+  return *p;
+}
+
 void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) {
   cmd.add_option("-L,--tess-factor,--factor", o.factor,
                  "Tessellation factor: segments per edge (1..64) of the uniform pattern, or every factor of the "
@@ -123,27 +162,13 @@ TessSettings PatternOptions::settings(const char* command) const {
   if (partitioning.empty() && !fixed && !adaptive_on) return s;  // the uniform pattern
 
   s.kind = PatternKind::D3D11;
-  if (!partitioning.empty()) {
-    const auto p = parse_partitioning(partitioning);
-    if (!p)
-      throw InputError(command, "--partitioning",
-                       "'" + partitioning + "' is not one of integer, pow2, fractional_odd, fractional_even");
-    s.partitioning = *p;
-  }
+  if (!partitioning.empty()) s.partitioning = parse_partitioning_option(command, partitioning);
   const auto L = static_cast<float>(factor);
   s.outer = {L, L, L};
   s.inner = L;
   if (fixed) {
-    const std::vector<double> v = parse_numbers(command, "--outer", outer);
-    if (v.size() != 3) throw InputError(command, "--outer", "'" + outer + "' needs three factors A,B,C");
-    s.outer = {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
-    if (inner.empty()) {
-      s.inner = std::max({s.outer[0], s.outer[1], s.outer[2]});
-    } else {
-      const std::vector<double> f = parse_numbers(command, "--inner", inner);
-      if (f.size() != 1) throw InputError(command, "--inner", "'" + inner + "' needs one factor");
-      s.inner = static_cast<float>(f[0]);
-    }
+    s.outer = parse_outer_factors(command, outer);
+    s.inner = inner.empty() ? std::max({s.outer[0], s.outer[1], s.outer[2]}) : parse_factor(command, "--inner", inner);
   }
   if (adaptive_on) {
     if (adaptive != "screen") throw InputError(command, "--adaptive", "'" + adaptive + "' is not 'screen'");
