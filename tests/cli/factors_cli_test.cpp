@@ -1,0 +1,102 @@
+// The pattern options of `tessim tessellate` and `tessim render` (docs/patterns.md §7): the
+// uniform default is unchanged, fixed and adaptive D3D11 factors give the patterns the model
+// computes, and conflicting or malformed options are input errors with nothing written.
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "model/factors.hpp"
+#include "model/mesh_io.hpp"
+#include "model/tessellate.hpp"
+#include "tests/support/run_tessim.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace tessim {
+namespace {
+
+namespace fs = std::filesystem;
+using tessim::testing::run_tessim;
+using tessim::testing::TempDir;
+
+const char* const kSphere = "/usr/share/assimp/models/STL/sphereWithHole.stl";
+
+TEST(FactorsCli, FixedFactorsWriteThePatternOfTheModel) {
+  TempDir dir;
+  const fs::path out = dir.path() / "f.obj";
+  const auto r = run_tessim({"tessellate", kSphere, "--outer", "2,3.5,5", "--inner", "4", "--partitioning",
+                             "fractional_even", "-o", out.string()},
+                            dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const D3D11Pattern p = d3d11_tri_pattern({2.0f, 3.5f, 5.0f}, 4.0f, Partitioning::fractional_even);
+  const Mesh mesh = load_mesh(kSphere);
+  const Mesh written = load_mesh(out);
+  EXPECT_EQ(written.triangle_count(), mesh.triangle_count() * p.triangle_count());
+  EXPECT_NE(r.out.find("fractional_even outer 2,3.5,5 inner 4"), std::string::npos) << r.out;
+}
+
+TEST(FactorsCli, AdaptiveCountsAreThoseOfTheModel) {
+  TempDir dir;
+  const fs::path out = dir.path() / "a.ply";
+  const auto r = run_tessim({"tessellate", kSphere, "--adaptive", "screen", "--camera", "eye=0,0,40,fov=30",
+                             "--pixels-per-segment", "6", "-o", out.string()},
+                            dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  TessSettings s;
+  s.kind = PatternKind::D3D11;
+  s.source = FactorSource::Adaptive;
+  s.camera.eye = {0, 0, 40};
+  s.camera.fov_deg = 30;
+  s.pixels_per_segment = 6;
+  const Mesh mesh = load_mesh(kSphere);
+  PatternCache cache(s);
+  const TessellationCounts c = count_tessellation(mesh, cache);
+  EXPECT_NE(r.out.find(std::to_string(c.vertices) + " vertices, " + std::to_string(c.triangles) + " triangles"),
+            std::string::npos)
+      << r.out;
+  EXPECT_GT(c.triangles, mesh.triangle_count());  // some edges are refined...
+  EXPECT_LT(c.triangles, mesh.triangle_count() * 64 * 64);  // ...not all to the limit
+}
+
+TEST(FactorsCli, BadPatternOptionsAreInputErrors) {
+  TempDir dir;
+  const std::string out = (dir.path() / "x.ply").string();
+  struct Case {
+    std::vector<std::string> args;
+    const char* message;
+  };
+  const Case cases[] = {
+      {{"--inner", "3"}, "--inner: needs --outer"},
+      {{"--outer", "1,2"}, "expected 3 comma-separated factors"},
+      {{"--outer", "1,x,2"}, "'x' is not a number"},
+      {{"--partitioning", "odd"}, "is not one of integer, pow2, fractional_odd, fractional_even"},
+      {{"--camera", "eye=1,2,3"}, "--camera: needs --adaptive screen"},
+      {{"--adaptive", "screen"}, "needs --camera eye=x,y,z"},
+      {{"--adaptive", "world", "--camera", "eye=1,2,3"}, "'world' is not 'screen'"},
+      {{"--adaptive", "screen", "--camera", "eye=0,0,0"}, "the eye is the target"},
+      {{"--adaptive", "screen", "--camera", "eye=1,2"}, "needs three coordinates"},
+      {{"--adaptive", "screen", "--camera", "eye=1,2,3,fov=180"}, "outside (0, 180)"},
+      {{"--adaptive", "screen", "--camera", "eye=1,2,3", "--outer", "1,2,3"}, "cannot be combined with --adaptive"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args{"tessellate", kSphere, "-o", out};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const auto r = run_tessim(args, dir.path());
+    EXPECT_EQ(r.status, 2) << c.message << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("tessim: error: "), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << c.message;
+  }
+}
+
+TEST(FactorsCli, CulledPatchesWriteAnEmptyMeshAndSaySo) {
+  TempDir dir;
+  const fs::path out = dir.path() / "c.ply";
+  const auto r = run_tessim({"tessellate", kSphere, "--outer", "0,3,3", "-o", out.string()}, dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("patches culled"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace tessim
