@@ -31,6 +31,7 @@ struct SimArgs {
   std::string output;
   bool schedule = false;
   bool errors = false;
+  AdaptiveOptions adaptive;
 };
 
 void run_sim(const SimArgs& a, const ConfigFlags& flags) {
@@ -39,9 +40,16 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     throw InputError(a.output, "output", "unsupported extension (use .ply or .obj)");
   if (a.trace_cycles == 0) throw InputError("command line", "--trace-cycles", "must be at least 1");
   check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}});
+  const std::optional<TessSettings> adaptive = adaptive_workload(a.adaptive, "sim");
 
   const Mesh mesh = load_mesh(a.mesh);
-  const int L = cfg.tess_factor;
+  const std::vector<std::uint8_t> factors = adaptive ? uniform_factors_covering(*adaptive, mesh) : std::vector<std::uint8_t>{};
+  std::uint64_t out_vertices = 0, out_triangles = 0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const int L = factors.empty() ? cfg.tess_factor : factors[t];
+    out_vertices += static_cast<std::uint64_t>(pattern_vertex_count(L));
+    out_triangles += static_cast<std::uint64_t>(pattern_triangle_count(L));
+  }
 
   // Every output is opened (as a temporary beside its target) before the run, so that a path
   // that cannot be written stops the command before anything is computed or moved into place.
@@ -51,9 +59,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   hooks.measure_errors = a.errors;
   std::unique_ptr<MeshWriter> writer;
   if (!a.output.empty()) {
-    writer = std::make_unique<MeshWriter>(
-        a.output, mesh.triangle_count() * static_cast<std::uint64_t>(pattern_vertex_count(L)),
-        mesh.triangle_count() * static_cast<std::uint64_t>(pattern_triangle_count(L)));
+    writer = std::make_unique<MeshWriter>(a.output, out_vertices, out_triangles);
     hooks.on_patch = [&](const sim::PatchOut& p) {
       writer->add_patch(p.L, p.positions.data(), p.normals.data());
     };
@@ -69,7 +75,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     hooks.observers.push_back(schedule.get());
   }
 
-  const sim::SimResult result = sim::simulate(mesh, cfg, hooks);
+  const sim::SimResult result = sim::simulate(mesh, cfg, hooks, factors);
 
   // All outputs are complete in memory or in temporaries: move them into place (the small
   // statistics are written out first, so that the renames are all that is left to fail).
@@ -105,6 +111,7 @@ void register_sim(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("-o,--output", args->output, "write the tessellated mesh (.ply or .obj)");
   sub->add_flag("--schedule", args->schedule, "print the issue pattern of the first vertices");
+  add_adaptive_options(*sub, args->adaptive, "sim");
   sub->add_flag("--errors", args->errors,
                 "compare every vertex with the float reference: end to end against the mesh, and the "
                 "arithmetic alone against its derived bound (summary and --stats \"errors\")");

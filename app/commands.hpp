@@ -40,17 +40,31 @@ Partitioning parse_partitioning_option(const char* command, const std::string& t
 //                                         default: the largest outer factor)
 //   --adaptive screen --camera eye=x,y,z[,target=x,y,z][,fov=deg] [--viewport WxH]
 //          [--pixels-per-segment P] [--partitioning P]   D3D11 pattern, factors per edge
+struct AdaptiveOptions {
+  std::string adaptive, camera, viewport = "1280x720";
+  double pixels_per_segment = 16.0;
+
+  bool given() const { return !adaptive.empty(); }
+  // Makes `s` adaptive with this camera (InputError(command, option, reason) when malformed).
+  void apply(TessSettings& s, const char* command) const;
+};
+void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& options, const char* command);
+
 struct PatternOptions {
   int factor = 4;
   std::string partitioning;
   std::string outer, inner;
-  std::string adaptive, camera, viewport = "1280x720";
-  double pixels_per_segment = 16.0;
+  AdaptiveOptions adaptive;
 
   // Throws InputError(command, option, reason).
   TessSettings settings(const char* command) const;
 };
 void add_pattern_options(CLI::App& cmd, PatternOptions& options, const char* command);
+
+// The unit's adaptive workload (tessim sim, tessim cosim), checked before any mesh is read:
+// nothing without --adaptive. Per triangle, the unit then gets the factor of its uniform
+// pattern that covers the adaptive D3D11 factors (uniform_factors_covering, model/factors.hpp).
+std::optional<TessSettings> adaptive_workload(const AdaptiveOptions& options, const char* command);
 
 // Checks the text of a numeric option before CLI11 converts it, so that a bad value is an
 // InputError(source, element, reason) quoting the text as given: "'abc' is not an integer",

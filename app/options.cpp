@@ -129,6 +129,16 @@ Partitioning parse_partitioning_option(const char* command, const std::string& t
   return *p;
 }
 
+void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& o, const char* command) {
+  cmd.add_option("--adaptive", o.adaptive,
+                 "'screen': factors per edge from the edge's projected length (docs/patterns.md)");
+  cmd.add_option("--camera", o.camera, "with --adaptive: eye=x,y,z[,target=x,y,z][,fov=deg] (fov default 45)");
+  cmd.add_option("--viewport", o.viewport, "with --adaptive: viewport WxH in pixels")->capture_default_str();
+  cmd.add_option("--pixels-per-segment", o.pixels_per_segment, "with --adaptive: target on-screen length of a segment")
+      ->transform(number_check<double>(command, "--pixels-per-segment", "positive numbers"))
+      ->capture_default_str();
+}
+
 void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) {
   cmd.add_option("-L,--tess-factor,--factor", o.factor,
                  "Tessellation factor: segments per edge (1..64) of the uniform pattern, or every factor of the "
@@ -140,13 +150,44 @@ void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) 
                  "pattern; integer with --outer or --adaptive)");
   cmd.add_option("--outer", o.outer, "D3D11 outer factors A,B,C (edges u=0, v=0, w=0), the same for every patch");
   cmd.add_option("--inner", o.inner, "D3D11 inner factor with --outer (default: the largest outer factor)");
-  cmd.add_option("--adaptive", o.adaptive,
-                 "'screen': D3D11 factors per edge from the edge's projected length (docs/patterns.md)");
-  cmd.add_option("--camera", o.camera, "with --adaptive: eye=x,y,z[,target=x,y,z][,fov=deg] (fov default 45)");
-  cmd.add_option("--viewport", o.viewport, "with --adaptive: viewport WxH in pixels")->capture_default_str();
-  cmd.add_option("--pixels-per-segment", o.pixels_per_segment, "with --adaptive: target on-screen length of a segment")
-      ->transform(number_check<double>(command, "--pixels-per-segment", "positive numbers"))
-      ->capture_default_str();
+  add_adaptive_options(cmd, o.adaptive, command);
+}
+
+void AdaptiveOptions::apply(TessSettings& s, const char* command) const {
+  if (adaptive != "screen") throw InputError(command, "--adaptive", "'" + adaptive + "' is not 'screen'");
+  if (camera.empty()) throw InputError(command, "--camera", "--adaptive screen needs --camera eye=x,y,z");
+  s.kind = PatternKind::D3D11;
+  s.source = FactorSource::Adaptive;
+  // key=value items; a value's own commas belong to it until the next "key=".
+  std::vector<std::pair<std::string, std::string>> items;
+  std::size_t start = 0;
+  while (start < camera.size()) {
+    const std::size_t eq = camera.find('=', start);
+    if (eq == std::string::npos) throw InputError(command, "--camera", "'" + camera + "' is not key=value,...");
+    const std::string key = camera.substr(start, eq - start);
+    std::size_t next = camera.size();
+    for (const char* k : {",eye=", ",target=", ",fov="}) next = std::min(next, camera.find(k, eq));
+    items.emplace_back(key, camera.substr(eq + 1, next - eq - 1));
+    start = next == camera.size() ? next : next + 1;
+  }
+  bool has_eye = false;
+  for (const auto& [key, value] : items) {
+    if (key == "eye") {
+      s.camera.eye = parse_point(command, key, value);
+      has_eye = true;
+    } else if (key == "target") {
+      s.camera.target = parse_point(command, key, value);
+    } else if (key == "fov") {
+      s.camera.fov_deg = parse_numbers(command, "--camera", value).at(0);
+    } else {
+      throw InputError(command, "--camera", "unknown key '" + key + "' (eye, target, fov)");
+    }
+  }
+  if (!has_eye) throw InputError(command, "--camera", "needs eye=x,y,z");
+  const glm::ivec2 size = parse_image_size(viewport, "--viewport");
+  s.camera.width = size.x;
+  s.camera.height = size.y;
+  s.pixels_per_segment = pixels_per_segment;
 }
 
 TessSettings PatternOptions::settings(const char* command) const {
@@ -154,12 +195,10 @@ TessSettings PatternOptions::settings(const char* command) const {
   s.L = factor;
   check_tess_factor(command, factor);
   const bool fixed = !outer.empty() || !inner.empty();
-  const bool adaptive_on = !adaptive.empty();
-  if (fixed && adaptive_on) throw InputError(command, "--outer", "cannot be combined with --adaptive");
+  if (fixed && adaptive.given()) throw InputError(command, "--outer", "cannot be combined with --adaptive");
   if (!inner.empty() && outer.empty()) throw InputError(command, "--inner", "needs --outer");
-  if (!adaptive_on && (!camera.empty()))
-    throw InputError(command, "--camera", "needs --adaptive screen");
-  if (partitioning.empty() && !fixed && !adaptive_on) return s;  // the uniform pattern
+  if (!adaptive.given() && !adaptive.camera.empty()) throw InputError(command, "--camera", "needs --adaptive screen");
+  if (partitioning.empty() && !fixed && !adaptive.given()) return s;  // the uniform pattern
 
   s.kind = PatternKind::D3D11;
   if (!partitioning.empty()) s.partitioning = parse_partitioning_option(command, partitioning);
@@ -170,41 +209,18 @@ TessSettings PatternOptions::settings(const char* command) const {
     s.outer = parse_outer_factors(command, outer);
     s.inner = inner.empty() ? std::max({s.outer[0], s.outer[1], s.outer[2]}) : parse_factor(command, "--inner", inner);
   }
-  if (adaptive_on) {
-    if (adaptive != "screen") throw InputError(command, "--adaptive", "'" + adaptive + "' is not 'screen'");
-    if (camera.empty()) throw InputError(command, "--camera", "--adaptive screen needs --camera eye=x,y,z");
-    s.source = FactorSource::Adaptive;
-    bool has_eye = false;
-    std::size_t start = 0;
-    // key=value items; a value's own commas belong to it until the next "key=".
-    std::vector<std::pair<std::string, std::string>> items;
-    while (start < camera.size()) {
-      const std::size_t eq = camera.find('=', start);
-      if (eq == std::string::npos) throw InputError(command, "--camera", "'" + camera + "' is not key=value,...");
-      const std::string key = camera.substr(start, eq - start);
-      std::size_t next = camera.size();
-      for (const char* k : {",eye=", ",target=", ",fov="}) next = std::min(next, camera.find(k, eq));
-      items.emplace_back(key, camera.substr(eq + 1, next - eq - 1));
-      start = next == camera.size() ? next : next + 1;
-    }
-    for (const auto& [key, value] : items) {
-      if (key == "eye") {
-        s.camera.eye = parse_point(command, key, value);
-        has_eye = true;
-      } else if (key == "target") {
-        s.camera.target = parse_point(command, key, value);
-      } else if (key == "fov") {
-        s.camera.fov_deg = parse_numbers(command, "--camera", value).at(0);
-      } else {
-        throw InputError(command, "--camera", "unknown key '" + key + "' (eye, target, fov)");
-      }
-    }
-    if (!has_eye) throw InputError(command, "--camera", "needs eye=x,y,z");
-    const glm::ivec2 size = parse_image_size(viewport, "--viewport");
-    s.camera.width = size.x;
-    s.camera.height = size.y;
-    s.pixels_per_segment = pixels_per_segment;
+  if (adaptive.given()) adaptive.apply(s, command);
+  validate(s, command);
+  return s;
+}
+
+std::optional<TessSettings> adaptive_workload(const AdaptiveOptions& options, const char* command) {
+  if (!options.given()) {
+    if (!options.camera.empty()) throw InputError(command, "--camera", "needs --adaptive screen");
+    return std::nullopt;
   }
+  TessSettings s;
+  options.apply(s, command);
   validate(s, command);
   return s;
 }

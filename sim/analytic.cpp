@@ -49,10 +49,10 @@ int single_vertex_span(int int_blocks, int int_latency, NormalMode normals) {
   return last;
 }
 
-AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles) {
+AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles, std::optional<double> mean_patch_vertices) {
   AnalyticPrediction p;
   p.ops_per_vertex = int_ops::ops_per_vertex(cfg.normals);
-  p.patch_vertices = pattern_vertex_count(cfg.tess_factor);
+  p.patch_vertices = mean_patch_vertices ? *mean_patch_vertices : pattern_vertex_count(cfg.tess_factor);
   p.cpg_cycles = cpg_cycles;
   p.int_issue = static_cast<double>(p.ops_per_vertex) / cfg.int_blocks;
 
@@ -100,6 +100,24 @@ double AnalyticPrediction::run_cycles(std::uint64_t triangles) const {
   const double behind_cpg = std::max({int_issue, te_chain, dpg, gpe_vertex});
   return fill_cycles + (static_cast<double>(triangles) - 1) * patch_vertices * cycles_per_vertex +
          patch_vertices * behind_cpg + tail_cycles;
+}
+
+VaryingWorkloadBounds varying_bounds(const AnalyticPrediction& p,
+                                     std::span<const std::uint64_t> patches_with_factor) {
+  const double behind_cpg = std::max({p.int_issue, p.te_chain, p.dpg, p.gpe_vertex});
+  const double per_patch_cpg = p.cpg * p.patch_vertices;  // C + 1 (dedicated) per patch
+  double no_buffer = 0, patches = 0, vertices = 0;
+  for (std::size_t L = 1; L < patches_with_factor.size(); ++L) {
+    const auto n = static_cast<double>(patches_with_factor[L]);
+    const double P = pattern_vertex_count(static_cast<int>(L));
+    no_buffer += n * std::max(per_patch_cpg, P * behind_cpg);
+    patches += n;
+    vertices += n * P;
+  }
+  VaryingWorkloadBounds b;
+  b.no_buffer_cycles = p.fill_cycles + no_buffer + p.tail_cycles;
+  b.full_buffer_cycles = p.fill_cycles + std::max(patches * per_patch_cpg, vertices * behind_cpg) + p.tail_cycles;
+  return b;
 }
 
 nlohmann::json analytic_json(const AnalyticPrediction& p, const UnitConfig& cfg, std::uint64_t triangles) {

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -23,7 +25,7 @@ struct AnalyticPrediction {
   double dpg = 1;          // one domain point allocated and one vertex retired per cycle
   int ops_per_vertex = 14;
   int chain_span = 0;      // S: allocation to last issue of one vertex alone in the TE
-  int patch_vertices = 0;  // (L+1)(L+2)/2
+  double patch_vertices = 0;  // (L+1)(L+2)/2, or the mean over a workload whose patches differ
   int cpg_cycles = 0;      // C of the configuration (dedicated) or cpg_gpe_cycles (gpe mapping)
   double fill_cycles = 0;  // reset to the first issue: the first patch's control points
   double tail_cycles = 0;  // last issue to the last acceptance: result, retirement, accept
@@ -35,8 +37,22 @@ struct AnalyticPrediction {
   double run_cycles(std::uint64_t triangles) const;
 };
 
-// cpg_cycles: C of the configuration as the unit uses it (Unit::cpg_cycles()).
-AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles);
+// cpg_cycles: C of the configuration as the unit uses it (Unit::cpg_cycles()). The patches have
+// cfg.tess_factor's pattern, or `mean_patch_vertices` vertices on average.
+AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles, std::optional<double> mean_patch_vertices = {});
+
+// A workload whose patches differ (per-patch factors): the CPG takes C + 1 cycles per patch
+// while the blocks behind it (INT issue, context chain, DPG, GPE; b cycles per vertex) work on
+// the previous patch. Without buffering between them each patch costs max(C + 1, P_i b); with
+// unbounded buffering the run costs max(n (C + 1), V b). The simulated run lies between the two;
+// where, tells how much the unit's FIFOs and control-point buffers absorb the variation.
+struct VaryingWorkloadBounds {
+  double no_buffer_cycles = 0;
+  double full_buffer_cycles = 0;
+};
+// `patches_with_factor[L]`: patches of the uniform pattern with factor L.
+VaryingWorkloadBounds varying_bounds(const AnalyticPrediction& p,
+                                     std::span<const std::uint64_t> patches_with_factor);
 
 // Span S of one vertex's dependence graph when it has the INT blocks to itself: the cycles
 // from its allocation to the issue of its last op under the scheduler's rule (ops in index

@@ -69,7 +69,8 @@ double ArithmeticCheck::diagonal_of(const std::vector<TriangleFx>& stream, const
   return std::max(glm::length(hi - lo), 1e-12);
 }
 
-ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg) {
+ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg,
+                                          std::span<const std::uint8_t> factors) {
   glm::dvec3 lo(1e300), hi(-1e300);
   for (const glm::dvec3& p : mesh.positions) {
     const glm::dvec3 x = dequantize(quantize(scaling.to_unit(p), cfg.format), cfg.format);
@@ -78,7 +79,9 @@ ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& s
   }
   const double diagonal = mesh.positions.empty() ? 1.0 : std::max(glm::length(hi - lo), 1e-12);
   return ArithmeticCheck(
-      [&mesh, scaling, cfg](std::uint32_t id) { return to_fixed(mesh, id, scaling, cfg.format, cfg.tess_factor); },
+      [&mesh, scaling, cfg, factors](std::uint32_t id) {
+        return to_fixed(mesh, id, scaling, cfg.format, factors.empty() ? cfg.tess_factor : factors[id]);
+      },
       diagonal, cfg);
 }
 

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 
 #include <nlohmann/json_fwd.hpp>
@@ -67,7 +68,9 @@ class ArithmeticCheck {
   // The bounding-box diagonal of a stream's dequantized positions.
   static double diagonal_of(const std::vector<TriangleFx>& stream, const NumberFormat& fmt);
   // The check of a whole mesh streamed with sim::MeshSource (each patch re-quantized on demand).
-  static ArithmeticCheck for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg);
+  // `factors`: per triangle, or empty for cfg.tess_factor everywhere (as simulate() takes them).
+  static ArithmeticCheck for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg,
+                                  std::span<const std::uint8_t> factors = {});
 
  private:
   TriangleLookup triangle_;

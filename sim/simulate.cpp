@@ -1,6 +1,7 @@
 #include "sim/simulate.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstdio>
 #include <sstream>
@@ -36,9 +37,24 @@ std::string percent(std::uint64_t part, std::uint64_t whole) {
   return buf;
 }
 
+WorkloadFactors workload_factors(const MeshSource& source, std::uint64_t triangles) {
+  WorkloadFactors w;
+  for (std::uint64_t t = 0; t < triangles; ++t) {
+    const int L = source.factor(t);
+    ++w.patches_with_factor[static_cast<std::size_t>(L)];
+    w.vertices += static_cast<std::uint64_t>(pattern_vertex_count(L));
+    if (L != source.factor(0)) w.uniform = false;
+  }
+  return w;
+}
+
 }  // namespace
 
-SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks) {
+SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks,
+                   std::span<const std::uint8_t> factors) {
+  if (!factors.empty() && factors.size() != mesh.triangle_count())
+    throw std::logic_error("simulate: " + std::to_string(factors.size()) + " factors for " +
+                           std::to_string(mesh.triangle_count()) + " triangles");
   const auto t0 = std::chrono::steady_clock::now();
   check_convertible(mesh);
   SimResult r;
@@ -48,25 +64,28 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   r.scaling = host_scaling(mesh);
 
   Unit unit(cfg);
-  BasicTestbench<MeshSource> tb(MeshSource(mesh, r.scaling, cfg.format, cfg.tess_factor), cfg);
+  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, factors);
+  BasicTestbench<MeshSource> tb(source, cfg);
   r.cpg_cycles = unit.cpg_cycles();
+  r.factors = workload_factors(source, r.triangles);
   const NumberFormat& fmt = cfg.format;
-  const int L = cfg.tess_factor;
-  const int patch_vertices = pattern_vertex_count(L);
-  const std::uint64_t total = r.triangles * static_cast<std::uint64_t>(patch_vertices);
+  int L = r.triangles ? source.factor(0) : cfg.tess_factor;  // of the patch expected next
+  int patch_vertices = pattern_vertex_count(L);
+  const std::uint64_t total = source.vertices();
   const std::uint64_t watchdog = watchdog_cycles(cfg, unit.cpg_cycles());
 
   std::vector<glm::dvec3> patch_pos, patch_nrm;
   if (hooks.on_patch) {
-    patch_pos.resize(static_cast<std::size_t>(patch_vertices));
-    patch_nrm.resize(static_cast<std::size_t>(patch_vertices));
+    const int largest = pattern_vertex_count(factors.empty() ? cfg.tess_factor : kMaxTessFactor);
+    patch_pos.resize(static_cast<std::size_t>(largest));
+    patch_nrm.resize(static_cast<std::size_t>(largest));
   }
   std::vector<CycleObserver*> observers = hooks.observers;
   std::optional<MeshErrors> mesh_errors;
   std::optional<ArithmeticCheck> arithmetic;
   if (hooks.measure_errors) {
     mesh_errors.emplace(mesh, r.scaling, cfg);
-    arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg));
+    arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, factors));
   }
 
   // Expected next vertex: the stream is checked as it goes (patch order, pattern order), so a
@@ -102,11 +121,18 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
       if (hooks.on_patch) {
         patch_pos[static_cast<std::size_t>(expect_index)] = position_from_fixed(v.pos, r.scaling, fmt);
         patch_nrm[static_cast<std::size_t>(expect_index)] = normal_from_fixed(v.nrm, fmt);
-        if (v.last) hooks.on_patch(PatchOut{v.id, L, patch_pos, patch_nrm});
+        if (v.last) {
+          const auto n = static_cast<std::size_t>(patch_vertices);
+          hooks.on_patch(PatchOut{v.id, L, {patch_pos.data(), n}, {patch_nrm.data(), n}});
+        }
       }
       if (v.last) {
         ++expect_id;
         expect_index = 0;
+        if (expect_id < r.triangles) {
+          L = source.factor(expect_id);
+          patch_vertices = pattern_vertex_count(L);
+        }
       } else {
         ++expect_index;
       }
@@ -177,9 +203,9 @@ std::string bottleneck(const SimResult& r) {
   } else if (w.starved_by_cpg == top) {
     std::snprintf(buf, sizeof buf,
                   "CPG: TE starved by CPG in %.1f%% of the late vertex intervals (GPE waited %.1f%% of cycles; "
-                  "%s mapping, C = %d cycles per triangle, %d vertices per patch)",
+                  "%s mapping, C = %d cycles per triangle, %.4g vertices per patch)",
                   100 * w.starved_by_cpg / waited, 100 * ratio(r.gpe_waited, cycles),
-                  to_string(c.cpg_mapping).c_str(), r.cpg_cycles, pattern_vertex_count(c.tess_factor));
+                  to_string(c.cpg_mapping).c_str(), r.cpg_cycles, ratio(r.factors.vertices, r.triangles));
   } else if (w.int_limited == top) {
     std::snprintf(buf, sizeof buf,
                   "INT blocks: all %d busy with ready ops left in %.1f%% of the late vertex intervals "
@@ -202,6 +228,44 @@ nlohmann::json te_json(const TeStats& t) {
   return {{"context_limited", t.context_limited}, {"int_limited", t.int_limited}, {"busy", t.busy},
           {"blocked_by_gpe", t.blocked_by_gpe},   {"starved_by_cpg", t.starved_by_cpg}, {"idle", t.idle},
           {"pipeline", t.pipeline}};
+}
+
+}  // namespace
+
+namespace {
+
+// Patches by vertex count in powers of two: 3, 4-7, 8-15, ..., 2048-4095 (L = 64 has 2145).
+constexpr int kVertexBuckets = 11;
+int vertex_bucket(int vertices) { return std::bit_width(static_cast<unsigned>(vertices)) - 2; }
+
+nlohmann::json workload_json(const WorkloadFactors& w, std::uint64_t triangles) {
+  std::array<std::uint64_t, kVertexBuckets> histogram{};
+  int min_v = 0, max_v = 0;
+  for (int L = 1; L <= kMaxTessFactor; ++L) {
+    const std::uint64_t n = w.patches_with_factor[static_cast<std::size_t>(L)];
+    if (n == 0) continue;
+    const int v = pattern_vertex_count(L);
+    histogram[static_cast<std::size_t>(vertex_bucket(v))] += n;
+    if (min_v == 0) min_v = v;
+    max_v = v;
+  }
+  return {{"factors", w.uniform ? "uniform" : "per patch"},
+          {"vertices_per_patch",
+           {{"min", min_v}, {"mean", ratio(w.vertices, triangles)}, {"max", max_v}}},
+          {"vertices_per_patch_log2_histogram", histogram}};
+}
+
+nlohmann::json analytic_of(const SimResult& r) {
+  if (r.factors.uniform) return analytic_json(predict(r.config, r.cpg_cycles), r.config, r.triangles);
+  const AnalyticPrediction p = predict(r.config, r.cpg_cycles, ratio(r.factors.vertices, r.triangles));
+  nlohmann::json j = analytic_json(p, r.config, r.triangles);
+  const VaryingWorkloadBounds b = varying_bounds(p, r.factors.patches_with_factor);
+  const auto v = static_cast<double>(r.factors.vertices);
+  j["varying"] = {{"no_buffer_cycles", b.no_buffer_cycles},
+                  {"full_buffer_cycles", b.full_buffer_cycles},
+                  {"no_buffer_cycles_per_vertex", v > 0 ? b.no_buffer_cycles / v : 0.0},
+                  {"full_buffer_cycles_per_vertex", v > 0 ? b.full_buffer_cycles / v : 0.0}};
+  return j;
 }
 
 }  // namespace
@@ -246,7 +310,8 @@ nlohmann::json stats_json(const SimResult& r) {
         {"gpe_starved_by_te", r.gpe.starved}}},
       {"warnings", {{"degenerate_patches", r.degenerate_patches}, {"zero_normals", r.zero_normals}}},
       {"bottleneck", bottleneck(r)},
-      {"analytic", analytic_json(predict(r.config, r.cpg_cycles), r.config, r.triangles)},
+      {"workload", workload_json(r.factors, r.triangles)},
+      {"analytic", analytic_of(r)},
       {"wall_seconds", r.wall_seconds},
   };
   if (r.errors) {
@@ -269,11 +334,29 @@ std::string summary(const SimResult& r) {
                 c.format.coord_int_bits, c.format.coord_frac_bits, c.format.coord_width(), c.format.bary_bits,
                 to_string(c.cpg_mapping).c_str(), r.cpg_cycles);
   s << buf;
-  std::snprintf(buf, sizeof buf,
-                "workload %s: %llu triangles, L=%d (%d vertices/patch), %s normals; GPE K=%d, stall %.2f, seed %llu\n",
-                r.mesh.c_str(), static_cast<unsigned long long>(r.triangles), c.tess_factor,
-                pattern_vertex_count(c.tess_factor), std::string(to_string(c.normals)).c_str(), c.gpe_cycles,
-                c.gpe_stall_prob, static_cast<unsigned long long>(c.seed));
+  std::string factors;
+  if (r.factors.uniform) {
+    const int L = r.triangles ? static_cast<int>(std::find_if(r.factors.patches_with_factor.begin() + 1,
+                                                              r.factors.patches_with_factor.end(),
+                                                              [](std::uint64_t n) { return n > 0; }) -
+                                                 r.factors.patches_with_factor.begin())
+                              : c.tess_factor;
+    std::snprintf(buf, sizeof buf, "L=%d (%d vertices/patch)", L, pattern_vertex_count(L));
+  } else {
+    int lo = 0, hi = 0;
+    for (int L = 1; L <= kMaxTessFactor; ++L)
+      if (r.factors.patches_with_factor[static_cast<std::size_t>(L)]) {
+        if (!lo) lo = L;
+        hi = L;
+      }
+    std::snprintf(buf, sizeof buf, "L=%d..%d per patch (%.1f vertices/patch on average)", lo, hi,
+                  ratio(r.factors.vertices, r.triangles));
+  }
+  factors = buf;
+  std::snprintf(buf, sizeof buf, "workload %s: %llu triangles, %s, %s normals; GPE K=%d, stall %.2f, seed %llu\n",
+                r.mesh.c_str(), static_cast<unsigned long long>(r.triangles), factors.c_str(),
+                std::string(to_string(c.normals)).c_str(), c.gpe_cycles, c.gpe_stall_prob,
+                static_cast<unsigned long long>(c.seed));
   s << buf;
   std::snprintf(buf, sizeof buf,
                 "result   %llu cycles  %llu vertices  %.3f cycles/vertex  %.4f vertices/cycle\n",

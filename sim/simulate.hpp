@@ -3,6 +3,7 @@
 // and the reports built on the statistics (stats JSON, human summary).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -18,6 +19,7 @@
 #include "sim/gpe.hpp"
 #include "sim/host.hpp"
 #include "sim/reference_check.hpp"
+#include "sim/testbench.hpp"
 #include "sim/unit.hpp"
 
 namespace tessim::sim {
@@ -52,6 +54,13 @@ struct SimErrors {
   ArithmeticErrors arithmetic;
 };
 
+// The per-patch load of a run: the factors of its patches and the vertices they make.
+struct WorkloadFactors {
+  bool uniform = true;  // every patch has the configuration's factor
+  std::array<std::uint64_t, kMaxTessFactor + 1> patches_with_factor{};  // index L
+  std::uint64_t vertices = 0;
+};
+
 struct SimResult {
   std::string mesh;              // source of the mesh
   UnitConfig config;
@@ -70,6 +79,7 @@ struct SimResult {
   double wall_seconds = 0.0;
   HostScaling scaling;
   std::optional<SimErrors> errors;       // with SimHooks::measure_errors
+  WorkloadFactors factors;               // the factors of the run's patches
 };
 
 // Runs every triangle of `mesh` through the unit with a uniform factor cfg.tess_factor until
@@ -77,7 +87,10 @@ struct SimResult {
 // a mesh the host cannot convert (check_convertible) or when a patch saturates (the widths
 // cannot hold the mesh). A vertex beyond the arithmetic error bound is reported in
 // SimResult::errors, not thrown: it is a finding about the widths, not bad input.
-SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks = {});
+// `factors`: one per triangle of the mesh (an adaptive workload, model/factors.hpp); empty:
+// cfg.tess_factor for every triangle.
+SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks = {},
+                   std::span<const std::uint8_t> factors = {});
 
 // Figures derived from the statistics (docs/microarchitecture.md §10).
 double throughput(const SimResult& r);         // vertices per cycle

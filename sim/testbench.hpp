@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "model/mesh.hpp"
@@ -38,24 +39,30 @@ class VectorSource {
 };
 
 // The triangles of a mesh, scaled and quantized one at a time as they are offered (streaming:
-// nothing per triangle is held), all with factor L.
+// nothing per triangle is held but its factor), all with factor L or each with its own.
 class MeshSource {
  public:
-  MeshSource(const Mesh& mesh, const HostScaling& scaling, const NumberFormat& format, int L)
-      : mesh_(mesh), scaling_(scaling), format_(format), L_(L) {
+  // `factors`: one per triangle (empty: L for every triangle); kept by reference.
+  MeshSource(const Mesh& mesh, const HostScaling& scaling, const NumberFormat& format, int L,
+             std::span<const std::uint8_t> factors = {})
+      : mesh_(mesh), scaling_(scaling), format_(format), L_(L), factors_(factors) {
     rewind();
   }
+  int factor(std::size_t t) const { return factors_.empty() ? L_ : factors_[t]; }
   void rewind() {
     next_ = 0;
-    if (available()) current_ = to_fixed(mesh_, 0, scaling_, format_, L_);
+    if (available()) current_ = to_fixed(mesh_, 0, scaling_, format_, factor(0));
   }
   bool available() const { return next_ < mesh_.triangle_count(); }
   const TriangleFx& front() const { return current_; }
   void pop() {
-    if (++next_ < mesh_.triangle_count()) current_ = to_fixed(mesh_, next_, scaling_, format_, L_);
+    if (++next_ < mesh_.triangle_count()) current_ = to_fixed(mesh_, next_, scaling_, format_, factor(next_));
   }
   std::uint64_t vertices() const {
-    return mesh_.triangle_count() * static_cast<std::uint64_t>(pattern_vertex_count(L_));
+    if (factors_.empty()) return mesh_.triangle_count() * static_cast<std::uint64_t>(pattern_vertex_count(L_));
+    std::uint64_t n = 0;
+    for (std::uint8_t L : factors_) n += static_cast<std::uint64_t>(pattern_vertex_count(L));
+    return n;
   }
 
  private:
@@ -63,6 +70,7 @@ class MeshSource {
   HostScaling scaling_;
   NumberFormat format_;
   int L_;
+  std::span<const std::uint8_t> factors_;
   std::size_t next_ = 0;
   TriangleFx current_;
 };
