@@ -29,6 +29,7 @@ struct CosimArgs {
   bool verif = false;
   std::string wave;
   int wave_window = 200;
+  AdaptiveOptions adaptive;
 };
 
 std::string known_builds() {
@@ -70,6 +71,8 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   if (!a.wave.empty()) check_output_paths({{"--wave", a.wave}});
   const sim::UnitConfig cfg = flags.config();  // defaults, --config, the flags given
   const std::string variant = choose_variant(a, flags, cfg);
+  const std::optional<TessSettings> adaptive = adaptive_workload(a.adaptive, "cosim");
+  if (adaptive && a.random_count > 0) throw InputError("command line", "--adaptive", "needs a mesh, not --random");
 
   std::vector<sim::TriangleFx> stream;
   std::string source;
@@ -80,10 +83,11 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   } else {
     const Mesh mesh = load_mesh(a.mesh);
     const sim::HostScaling scaling = sim::host_scaling(mesh);
+    const std::vector<std::uint8_t> factors = adaptive ? uniform_factors_covering(*adaptive, mesh) : std::vector<std::uint8_t>{};
     stream.reserve(mesh.triangle_count());
     for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
-      stream.push_back(sim::to_fixed(mesh, i, scaling, cfg.format, cfg.tess_factor));
-    source = a.mesh;
+      stream.push_back(sim::to_fixed(mesh, i, scaling, cfg.format, factors.empty() ? cfg.tess_factor : factors[i]));
+    source = a.mesh + (adaptive ? " (" + adaptive->describe() + ", covered by the uniform pattern)" : "");
   }
 
   cosim::CosimOptions opts;
@@ -124,6 +128,7 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("--seeds", args->seeds, "Run this many consecutive seeds (1..1000000)")
       ->transform(number_check<int>("command line", "--seeds", "1..1000000"));
   cmd->add_option("--variant", args->variant, "RTL build to use (see docs/rtl.md)");
+  add_adaptive_options(*cmd, args->adaptive, "cosim");
   cmd->add_flag("--verif", args->verif, "Use the verification build (X randomised)");
   cmd->add_option("--wave", args->wave, "On divergence, write an FST waveform of the window before it");
   cmd->add_option("--wave-window", args->wave_window, "Cycles of waveform before the divergence (1..10000000)")
