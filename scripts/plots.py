@@ -21,6 +21,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -546,6 +547,113 @@ def fig_stall(rows, out):
               [f"N = {n}" for n in Ns] + ["GPE alone: K − 1 + 1/(1 − p)"], table)
 
 
+def camera_distance(camera):
+    """Distance from the eye to the target of a camera spec "eye=x,y,z,target=x,y,z[,fov=..]"."""
+    parts = dict(item.split("=") for item in camera.replace(",target=", ";target=").replace(",fov=", ";fov=")
+                 .split(";"))
+    eye = [float(x) for x in parts["eye"].split(",")]
+    target = [float(x) for x in parts.get("target", "0,0,0").split(",")]
+    return math.dist(eye, target)
+
+
+VERTEX_BUCKETS = ["3", "4–7", "8–15", "16–31", "32–63", "64–127", "128–255", "256–511", "512–1023",
+                  "1024–2047", "2048–4095"]
+
+
+def fig_adaptive(rows, out):
+    ad = in_grid(rows, "adaptive")
+    if not ad:
+        return out.skip("Adaptive factors", "no rows of grid 'adaptive'")
+    cameras = sorted(distinct(ad, "camera"), key=camera_distance)
+    modes = distinct(ad, "normals")
+    Ks = distinct(ad, "gpe_cycles")
+    Ns = distinct(ad, "int_blocks")
+    fig, axes = plt.subplots(1, 1 + len(modes), figsize=(4.4 * (1 + len(modes)), 3.9), squeeze=False)
+    ax = axes[0][0]
+    width = 0.8 / len(cameras)
+    table = []
+    for i, cam in enumerate(cameras):
+        r = next(r for r in ad if r["camera"] == cam)
+        hist = [r[f"workload.vertices_per_patch_log2_histogram.{b}"] for b in range(len(VERTEX_BUCKETS))]
+        last = max(b for b, n in enumerate(hist) if n) + 1
+        ax.bar([b + (i - (len(cameras) - 1) / 2) * width for b in range(last)], hist[:last], width,
+               color=f"C{i}", label=f"eye at {camera_distance(cam):.1f}")
+        table.append([f"{camera_distance(cam):.1f}", r["workload.vertices_per_patch.min"],
+                      fmt(r["workload.vertices_per_patch.mean"], 4), r["workload.vertices_per_patch.max"]] +
+                     [n for n in hist[:8]])
+    ax.set_xticks(range(8))
+    ax.set_xticklabels(VERTEX_BUCKETS[:8], fontsize=6, rotation=30)
+    ax.set_xlabel("vertices per patch")
+    ax.set_ylabel("patches")
+    ax.set_title("per-patch load", fontsize=8)
+    ax.legend(fontsize=6)
+    perf = []
+    for ax, mode in zip(axes[0][1:], modes):
+        for i, cam in enumerate(cameras):
+            for k_i, K in enumerate(Ks):
+                pts = sorted((r for r in ad if r["camera"] == cam and r["normals"] == mode and r["gpe_cycles"] == K),
+                             key=lambda r: r["int_blocks"])
+                style = "o-" if k_i == 0 else "x--"
+                ax.plot([r["int_blocks"] for r in pts], [r["cycles_per_vertex"] for r in pts], style, ms=4,
+                        color=f"C{i}", label=f"eye at {camera_distance(cam):.1f}, K = {K}")
+                for r in pts:
+                    perf.append([mode, f"{camera_distance(cam):.1f}", K, r["int_blocks"],
+                                 fmt(r["workload.vertices_per_patch.mean"], 4), fmt(r["cycles_per_vertex"], 4),
+                                 fmt(r["analytic.varying.no_buffer_cycles_per_vertex"], 4),
+                                 fmt(r["analytic.varying.full_buffer_cycles_per_vertex"], 4),
+                                 r["bottleneck"].split(":")[0]])
+        ax.set_xticks(Ns)
+        ax.set_yscale("log")
+        ax.yaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.set_yticks([2, 3, 4, 5, 7, 10, 14, 20, 30, 40])
+        ax.set_xlabel("INT blocks N")
+        ax.set_ylabel("cycles per vertex")
+        ax.set_title(f"{mode} normals: K = {Ks[0]} solid, K = {Ks[-1]} dashed", fontsize=8)
+    axes[0][-1].legend(fontsize=6)
+    fig.suptitle(f"Adaptive factors: every triangle its own L from a camera ({workload(ad, 'mesh')}, "
+                 f"{ad[0]['pixels_per_segment']} pixels per segment)", fontsize=8)
+    out.save(fig, "adaptive")
+    out.table("Adaptive factors: patches by vertex count", ["eye distance", "min", "mean", "max"] + VERTEX_BUCKETS[:8],
+              table)
+    out.table("Adaptive factors: cycles per vertex against the two analytical bounds",
+              ["normals", "eye distance", "K", "N", "vertices per patch", "simulated", "no-buffer bound",
+               "full-buffer bound", "limit"], perf,
+              note="No-buffer bound: every patch costs max(C + 1, P·b) on its own; full-buffer bound: "
+                   "max(n(C + 1), V·b) for the whole run (sim/analytic.hpp).")
+
+    bf = in_grid(rows, "adaptive_buffers")
+    if not bf:
+        return out.skip("Adaptive factors: buffers", "no rows of grid 'adaptive_buffers'")
+    table = []
+    fig, axes = plt.subplots(1, len(distinct(bf, "camera")), figsize=(4.6 * len(distinct(bf, "camera")), 3.8),
+                             squeeze=False)
+    for ax, cam in zip(axes[0], sorted(distinct(bf, "camera"), key=camera_distance)):
+        for n_i, N in enumerate(distinct(bf, "int_blocks")):
+            for v_i, V in enumerate(distinct(bf, "te_contexts")):
+                pts = sorted((r for r in bf if r["camera"] == cam and r["int_blocks"] == N and r["te_contexts"] == V),
+                             key=lambda r: r["vtx_fifo_depth"])
+                ax.plot([r["vtx_fifo_depth"] for r in pts], [r["cycles_per_vertex"] for r in pts],
+                        "o-" if v_i == 0 else "x--", ms=4, color=f"C{n_i}", label=f"N = {N}, V = {V}")
+                table.append([f"{camera_distance(cam):.1f}", N, V] + [fmt(r["cycles_per_vertex"], 4) for r in pts] +
+                             [fmt(pts[0]["analytic.varying.no_buffer_cycles_per_vertex"], 4),
+                              fmt(pts[0]["analytic.varying.full_buffer_cycles_per_vertex"], 4)])
+            r0 = next(r for r in bf if r["camera"] == cam and r["int_blocks"] == N)
+            ax.axhline(r0["analytic.varying.full_buffer_cycles_per_vertex"], color=f"C{n_i}", lw=0.7, ls=":")
+        ax.set_xscale("log", base=2)
+        ax.set_xlabel("VTX FIFO depth")
+        ax.set_ylabel("cycles per vertex")
+        ax.set_title(f"eye at {camera_distance(cam):.1f} (dotted: full-buffer bound)", fontsize=8)
+    axes[0][-1].legend(fontsize=6)
+    fig.suptitle(f"Adaptive factors: what buffering absorbs ({workload(bf, 'mesh', 'normals', 'gpe_cycles')})",
+                 fontsize=8)
+    out.save(fig, "adaptive_buffers")
+    depths = distinct(bf, "vtx_fifo_depth")
+    out.table("Adaptive factors: cycles per vertex against the VTX FIFO depth and the contexts",
+              ["eye distance", "N", "V"] + [f"VTX FIFO {d}" for d in depths] + ["no-buffer bound", "full-buffer bound"],
+              table)
+
+
 def tables_extra(rows, out):
     lg = in_grid(rows, "latency_gpe")
     if lg:
@@ -786,6 +894,7 @@ def main(argv):
     fig_contexts(rows, out)
     fig_normals(rows, out)
     fig_stall(rows, out)
+    fig_adaptive(rows, out)
     tables_extra(rows, out)
     fig_errors(rows, out, info)
     bus_traffic(rows, out, info)

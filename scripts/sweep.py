@@ -19,6 +19,10 @@ Keys: every key of a tessim config file (the "parameters" of `tessim schema`, wh
 reads: names, column order, defaults; README.md, Configuration files), plus
   mesh    a mesh file; a relative path is looked up next to the spec, then under
           /usr/share/assimp/models;
+  camera, viewport, pixels_per_segment
+          an adaptive workload (`tessim sim --adaptive screen --camera ...`): each triangle gets
+          the factor its edges' projected lengths ask for (docs/patterns.md §7); camera is
+          "eye=x,y,z,target=x,y,z,fov=deg", viewport "WxH";
   errors  true: also measure the fixed-point error of the run against the float64 reference
           (`tessim sim --errors`, vertex by vertex): positions relative to the input mesh's
           bounding-box diagonal, normals as angles in radians; columns error.*, and
@@ -68,7 +72,10 @@ CACHE_SCHEMA = 3  # bump when the cache record or the error measurement changes
 
 DEFAULT_TESSIM = REPO / "build" / "bin" / "tessim"
 # Keys that are not tessim configuration keys.
-SWEEP_KEYS = ("mesh", "errors")
+# An adaptive workload (tessim sim --adaptive screen): the camera and its viewport and target
+# segment length; each triangle then gets its own factor (docs/patterns.md §7).
+ADAPTIVE_KEYS = ("camera", "viewport", "pixels_per_segment")
+SWEEP_KEYS = ("mesh", "errors") + ADAPTIVE_KEYS
 # Statistics that are not columns: the config is already the parameter columns, the mesh path
 # is the `mesh` parameter.
 STATS_SKIP = ("config", "mesh")
@@ -102,7 +109,7 @@ def schema(tessim):
 def param_order(sch):
     """Column order of the parameters: the mesh, the schema's parameters in its order, errors.
     Keys not listed follow in alphabetical order."""
-    return ["mesh"] + [p["key"] for p in sch["parameters"]] + ["errors"]
+    return ["mesh", *ADAPTIVE_KEYS] + [p["key"] for p in sch["parameters"]] + ["errors"]
 
 
 def defaults(sch):
@@ -151,6 +158,8 @@ def expand(spec, spec_dir):
                 raise SpecError(f"grid '{name}': no mesh (give 'mesh' in base or in the grid)")
             params["mesh"] = resolve_mesh(params["mesh"], spec_dir)
             params["errors"] = bool(params.get("errors", False))
+            if "camera" not in params and any(k in params for k in ADAPTIVE_KEYS):
+                raise SpecError(f"grid '{name}': viewport and pixels_per_segment need a camera")
             ident = json.dumps(params, sort_keys=True)
             if ident in index:
                 names = points[index[ident]][1]
@@ -179,6 +188,9 @@ def file_sha256(path):
 def point_key(params, mesh_sha, tessim_sha):
     ident = {"schema": CACHE_SCHEMA, "config": tessim_config(params), "errors": params["errors"],
              "mesh_sha256": mesh_sha, "tessim_sha256": tessim_sha}
+    adaptive = {k: params[k] for k in ADAPTIVE_KEYS if k in params}
+    if adaptive:
+        ident["adaptive"] = adaptive
     return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
 
 
@@ -228,6 +240,12 @@ class Runner:
             args = ["sim", params["mesh"], "--config", str(cfg), "--stats", str(stats)]
             if params["errors"]:
                 args.append("--errors")
+            if "camera" in params:
+                args += ["--adaptive", "screen", "--camera", str(params["camera"])]
+                if "viewport" in params:
+                    args += ["--viewport", str(params["viewport"])]
+                if "pixels_per_segment" in params:
+                    args += ["--pixels-per-segment", str(params["pixels_per_segment"])]
             try:
                 self.run(args, f"sim {params['mesh']}")
             except InputRejected as e:
