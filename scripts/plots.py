@@ -163,6 +163,13 @@ def workload(rows, *keys):
 
 # --------------------------------------------------------------------------- figures
 
+def cycles_against_n(ax, Ns):
+    """Axes of a cycles-per-vertex against N panel."""
+    ax.set_xticks(Ns)
+    ax.set_xlabel("INT blocks N")
+    ax.set_ylabel("cycles per vertex")
+
+
 def balanced_n(rows, K):
     """Smallest N whose throughput reaches 99 % of the best throughput measured at this K."""
     at_k = sorted((r for r in rows if r["gpe_cycles"] == K), key=lambda r: r["int_blocks"])
@@ -535,9 +542,7 @@ def fig_stall(rows, out):
                         label=f"stall {prob}, VTX FIFO {depth}")
                 table.append([K, prob, depth] + [fmt(r["cycles_per_vertex"], 4) for r in pts] +
                              [fmt(K - 1 + 1 / (1 - prob), 4)])
-        ax.set_xticks(Ns)
-        ax.set_xlabel("INT blocks N")
-        ax.set_ylabel("cycles per vertex")
+        cycles_against_n(ax, Ns)
         ax.set_title(f"K = {K}", fontsize=8)
     axes[0][-1].legend(fontsize=6)
     fig.suptitle(f"GPE with random stalls (probability per cycle), VTX FIFO depth 2 (solid) and 8 (dashed) "
@@ -602,13 +607,11 @@ def fig_adaptive(rows, out):
                                  fmt(r["analytic.varying.no_buffer_cycles_per_vertex"], 4),
                                  fmt(r["analytic.varying.full_buffer_cycles_per_vertex"], 4),
                                  r["bottleneck"].split(":")[0]])
-        ax.set_xticks(Ns)
+        cycles_against_n(ax, Ns)
         ax.set_yscale("log")
         ax.yaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
         ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_yticks([2, 3, 4, 5, 7, 10, 14, 20, 30, 40])
-        ax.set_xlabel("INT blocks N")
-        ax.set_ylabel("cycles per vertex")
         ax.set_title(f"{mode} normals: K = {Ks[0]} solid, K = {Ks[-1]} dashed", fontsize=8)
     axes[0][-1].legend(fontsize=6)
     fig.suptitle(f"Adaptive factors: every triangle its own L from a camera ({workload(ad, 'mesh')}, "
