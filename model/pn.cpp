@@ -127,18 +127,23 @@ int casteljau_level(const std::array<glm::dvec3, In>& cur, int degree, double w,
 
 }  // namespace
 
-PnPatch make_patch(const PnInput& in, NormalMode mode) {
+namespace {
+
+// Tangent coefficient nearest Pi on edge i -> j: plain PN (docs/mathematics.md §2).
+glm::dvec3 pn_tangent(const PnInput& in, int i, int j) {
+  const double wij = glm::dot(in.p[j] - in.p[i], in.n[i]);
+  return (2.0 * in.p[i] + in.p[j] - wij * in.n[i]) / 3.0;
+}
+
+// The nets from the ten tangent coefficients' rule and the corner normals of the normal field.
+template <class Tangent>
+PnPatch build_patch(const PnInput& in, const std::array<glm::dvec3, 3>& field_normals, NormalMode mode,
+                    Tangent tangent) {
   PnPatch patch;
   patch.mode = mode;
   const auto& P = in.p;
-  const auto& N = in.n;
+  const auto& N = field_normals;
 
-  // Geometry (docs/mathematics.md §2). Tangent point nearest Pi on edge i -> j:
-  // (2Pi + Pj - w_ij Ni) / 3.
-  auto tangent = [&](int i, int j) {
-    const double wij = glm::dot(P[j] - P[i], N[i]);
-    return (2.0 * P[i] + P[j] - wij * N[i]) / 3.0;
-  };
   auto& b = patch.b;
   b[net_index(0, 0, 3)] = P[0];           // b300
   b[net_index(3, 0, 3)] = P[1];           // b030
@@ -183,6 +188,40 @@ PnPatch make_patch(const PnInput& in, NormalMode mode) {
     }
   }
   return patch;
+}
+
+}  // namespace
+
+PnPatch make_patch(const PnInput& in, NormalMode mode) {
+  return build_patch(in, in.n, mode, [&](int i, int j) { return pn_tangent(in, i, j); });
+}
+
+PnPatch make_stpn_patch(const PnInput& in, const std::array<VertexTags, 3>& tags, NormalMode mode) {
+  const auto& P = in.p;
+  const auto& N = in.n;
+  // The side of each vertex's crease this triangle lies on, decided by its face normal.
+  const glm::dvec3 face = glm::cross(P[1] - P[0], P[2] - P[0]);
+  std::array<glm::dvec3, 3> sharp = N;  // N'_i: replaces N_i in the normal field
+  for (int i = 0; i < 3; ++i) {
+    const VertexTags& t = tags[static_cast<std::size_t>(i)];
+    if (!t.tagged()) continue;
+    const double side = glm::dot(face, t.delta) >= 0.0 ? 1.0 : -1.0;
+    sharp[static_cast<std::size_t>(i)] = glm::normalize(N[i] + side * t.sigma * t.delta);
+  }
+  auto tangent = [&](int j, int k) {
+    const VertexTags& tj = tags[static_cast<std::size_t>(j)];
+    if (tj.neutral()) return pn_tangent(in, j, k);
+    const glm::dvec3 d = P[j] + (1.0 - tj.theta) / 3.0 * (P[k] - P[j]);
+    // Π(p, n, q) = −n·(q − p): the signed distance that brings q back into the plane (p, n).
+    auto project = [&](const glm::dvec3& n) { return -glm::dot(n, d - P[j]); };
+    if (tj.tagged() && tags[static_cast<std::size_t>(k)].tagged()) {  // δ = 1: a crease edge
+      const glm::dvec3 y = glm::normalize(N[j] + tj.beta * tj.delta);
+      return d + project(N[j]) * y;
+    }
+    const glm::dvec3 x = glm::normalize((1.0 - tj.sigma) * N[j] + tj.sigma * sharp[static_cast<std::size_t>(j)]);
+    return d + project(x) * x;
+  };
+  return build_patch(in, sharp, mode, tangent);
 }
 
 PnVertex eval_bernstein(const PnPatch& patch, double u, double v) {

@@ -38,6 +38,23 @@ struct PnVertex {
 // Builds the control nets of docs/mathematics.md §2-§4 for the chosen normal mode.
 PnPatch make_patch(const PnInput& in, NormalMode mode);
 
+// The scalar tags of one vertex of a scalar-tagged PN mesh (docs/mathematics.md §9): crease
+// vector Δ = N⁺ − N⁻ (zero: the vertex is untagged; its normal N is then normalize(N⁺ + N⁻)),
+// sharpness σ >= 0, tension θ in [-1, 1], bias β in [-1, 1].
+struct VertexTags {
+  glm::dvec3 delta{0.0};
+  double sigma = 0.0, theta = 0.0, beta = 0.0;
+  bool tagged() const { return delta != glm::dvec3(0.0); }
+  // No tag changes anything: untagged and no tension (σ and β act only with Δ != 0).
+  bool neutral() const { return !tagged() && theta == 0.0; }
+};
+
+// Scalar-tagged PN control points (docs/mathematics.md §9): each vertex's sharp normal on the
+// triangle's side of its crease replaces its normal in the normal field, and each tangent
+// coefficient follows the vertex's tags. A vertex whose tags are neutral takes exactly the
+// plain PN formulas, so all-neutral tags give make_patch()'s patch bit for bit.
+PnPatch make_stpn_patch(const PnInput& in, const std::array<VertexTags, 3>& tags, NormalMode mode);
+
 // Direct evaluation by Bernstein sums at barycentric (w, u, v) = (1-u-v, u, v).
 PnVertex eval_bernstein(const PnPatch& patch, double u, double v);
 
