@@ -67,7 +67,10 @@ std::size_t distinct_points(const std::vector<glm::dvec3>& points, double tolera
   };
   struct Hash {
     std::size_t operator()(const Key& k) const {
-      return static_cast<std::size_t>(k.x * 73856093 ^ k.y * 19349663 ^ k.z * 83492791);
+      // Unsigned: the products wrap by definition (signed overflow would be undefined).
+      return static_cast<std::size_t>(static_cast<std::uint64_t>(k.x) * 73856093u ^
+                                      static_cast<std::uint64_t>(k.y) * 19349663u ^
+                                      static_cast<std::uint64_t>(k.z) * 83492791u);
     }
   };
   std::unordered_map<Key, std::vector<glm::dvec3>, Hash> cells;
