@@ -46,7 +46,6 @@ class ProgressChecker {
  public:
   explicit ProgressChecker(std::uint64_t limit) : limit_(limit) {}
   void transfer(std::uint64_t cycle) { last_ = cycle; }
-  void reset(std::uint64_t cycle) { last_ = cycle; }
   bool hung(std::uint64_t cycle) const { return cycle - last_ > limit_; }
   std::uint64_t limit() const { return limit_; }
 

@@ -92,12 +92,6 @@ void unregister_temporary(int slot) {
 
 }  // namespace
 
-std::size_t pending_temporaries() {
-  std::size_t n = 0;
-  for (const Slot& slot : g_slots) n += slot.state.load() == kPending;
-  return n;
-}
-
 AtomicOutput::AtomicOutput(std::filesystem::path target, bool binary) : target_(std::move(target)) {
   std::error_code ec;
   if (std::filesystem::is_directory(target_, ec))

@@ -35,7 +35,4 @@ class AtomicOutput {
   int slot_ = -1;  // entry in the table of temporaries the signal handler removes
 };
 
-// Temporaries that a signal would remove now (for tests).
-std::size_t pending_temporaries();
-
 }  // namespace tessim
