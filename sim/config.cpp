@@ -58,9 +58,9 @@ std::string to_string(CpgMapping m) { return m == CpgMapping::Dedicated ? "dedic
 void UnitConfig::validate(const std::string& source) const {
   for (const ParamSpec& p : unit_params()) check_range(source, p, *this);
   // Checks across parameters, beyond the ranges of the table.
-  if (format.coord_width() > 32)
+  if (format.coord_width() > kMaxCoordWidth)
     throw InputError(source, "coord_int_bits + coord_frac_bits",
-                     "coordinate width " + std::to_string(format.coord_width()) + " exceeds 32 bits");
+                     "coordinate width " + std::to_string(format.coord_width()) + " exceeds " + std::to_string(kMaxCoordWidth) + " bits");
   if (!hardware_supports(normals))
     throw InputError(source, "normals",
                      "'" + std::string(to_string(normals)) +

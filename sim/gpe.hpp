@@ -63,7 +63,8 @@ class Gpe {
   // classify a spare cycle as `cpg` rather than `starved`). Advances the state to the end of
   // the cycle and returns the values the GPE presents during it.
   GpeCycle tick(bool vtx_valid, bool cpg_computing) {
-    const bool stall = rng_.uniform() < stall_prob_;
+    // No draw at probability 0: nothing could observe it (the generator only decides stalls).
+    const bool stall = stall_prob_ > 0 && rng_.uniform() < stall_prob_;
     GpeCycle c;
     c.ready = remaining_ == 0 && !stall;
     c.accepted = c.ready && vtx_valid;

@@ -4,8 +4,9 @@
 // only the done bits in flight: completions due at the end of cycle c wait in slot c mod Λ.
 #pragma once
 
+#include <array>
 #include <cstdint>
-#include <vector>
+#include <stdexcept>
 
 namespace tessim::sim {
 
@@ -16,13 +17,18 @@ class IntBlocks {
     std::uint32_t bit;  // done bit of the op
   };
 
-  IntBlocks(int blocks, int latency)
-      : blocks_(blocks), latency_(latency),
-        pending_(static_cast<std::size_t>(blocks) * static_cast<std::size_t>(latency)),
-        pending_count_(static_cast<std::size_t>(latency), 0) {}
+  // The configuration limits: N <= 32, Λ <= 8 (sim/params.cpp).
+  static constexpr int kMaxBlocks = 32;
+  static constexpr int kMaxLatency = 8;
+
+  IntBlocks(int blocks, int latency) : blocks_(blocks), latency_(latency) {
+    if (blocks < 1 || blocks > kMaxBlocks || latency < 1 || latency > kMaxLatency)
+      throw std::invalid_argument("IntBlocks: N or latency out of range");
+    reset();
+  }
 
   void reset() {
-    for (int& c : pending_count_) c = 0;
+    pending_count_.fill(0);
     due_slot_ = 0;
   }
 
@@ -34,7 +40,7 @@ class IntBlocks {
   void issue(int context, std::uint32_t done_bit) {
     const int slot = due_slot_ == 0 ? latency_ - 1 : due_slot_ - 1;
     int& count = pending_count_[static_cast<std::size_t>(slot)];
-    pending_[static_cast<std::size_t>(slot * blocks_ + count++)] =
+    pending_[static_cast<std::size_t>(slot)][static_cast<std::size_t>(count++)] =
         Completion{static_cast<std::uint8_t>(context), done_bit};
   }
 
@@ -42,7 +48,7 @@ class IntBlocks {
   template <class Apply>
   void complete_due(Apply&& apply) {
     const std::size_t slot = static_cast<std::size_t>(due_slot_);
-    const Completion* due = &pending_[slot * static_cast<std::size_t>(blocks_)];
+    const Completion* due = pending_[slot].data();
     for (int i = 0; i < pending_count_[slot]; ++i) apply(due[i].context, due[i].bit);
     pending_count_[slot] = 0;
     due_slot_ = due_slot_ + 1 == latency_ ? 0 : due_slot_ + 1;
@@ -51,8 +57,8 @@ class IntBlocks {
  private:
   int blocks_;
   int latency_;
-  std::vector<Completion> pending_;  // latency x blocks
-  std::vector<int> pending_count_;
+  std::array<std::array<Completion, kMaxBlocks>, kMaxLatency> pending_{};  // by due slot
+  std::array<int, kMaxLatency> pending_count_{};
   int due_slot_ = 0;  // slot of the current cycle: cycle mod latency
 };
 

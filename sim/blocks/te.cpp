@@ -25,12 +25,14 @@ Te::Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const 
       dpg_(format),
       ints_(int_blocks, int_latency),
       issued_(static_cast<std::size_t>(int_blocks)) {
-  for (int op = 0; op < int_ops::kOpCount; ++op) operands_[static_cast<std::size_t>(op)] = int_ops::operands(op, normals);
+  linear_normals_ = normals == NormalMode::Linear;
+  slot_mask_ = static_cast<std::uint32_t>((std::uint64_t{1} << contexts) - 1);
 }
 
 void Te::reset() {
   for (Context& c : contexts_) c.issued = c.done = c.ready = 0;
   head_ = count_ = 0;
+  ready_slots_ = 0;
   next_seq_ = 0;
   dpg_.reset();
   ints_.reset();

@@ -56,11 +56,13 @@ class Te {
   // returns how many (the i-th went to INT block i, described by issued_ops()[i]).
   int schedule(const ControlPointBuffer& buffers) {
     int issued = 0;
-    left_over_ = false;
     const int n_blocks = ints_.blocks();
-    for (int age = 0; age < count_; ++age) {
-      int slot = head_ + age;
+    // Contexts with a ready op, oldest first: the slot mask rotated so that bit 0 is the head.
+    std::uint32_t by_age = ((ready_slots_ >> head_) | (ready_slots_ << (n_contexts_ - head_))) & slot_mask_;
+    while (by_age != 0 && issued < n_blocks) {
+      int slot = head_ + std::countr_zero(by_age);
       if (slot >= n_contexts_) slot -= n_contexts_;
+      by_age &= by_age - 1;
       Context& ctx = contexts_[static_cast<std::size_t>(slot)];
       while (ctx.ready != 0 && issued < n_blocks) {
         const int op = std::countr_zero(ctx.ready);
@@ -68,12 +70,10 @@ class Te {
         issue(buffers, ctx, slot, op, issued);
         ++issued;
       }
-      // All N blocks taken and this context still has a ready op: it waits for an INT block.
-      if (ctx.ready != 0) {
-        left_over_ = true;
-        break;
-      }
+      if (ctx.ready == 0) ready_slots_ &= ~(std::uint32_t{1} << slot);
     }
+    // All N blocks taken and a context still has a ready op: it waits for an INT block.
+    left_over_ = ready_slots_ != 0;
     return issued;
   }
   // Of the last schedule(): a ready op was left unissued because all N INT blocks were taken.
@@ -129,28 +129,69 @@ class Te {
     else return std::uint32_t{(done & deps) == deps} << Op;
   }
 
+  // Bit d of kDependents[o]: op d needs the result of op o.
+  static constexpr std::array<std::uint32_t, int_ops::kOpCount> kDependents = [] {
+    std::array<std::uint32_t, int_ops::kOpCount> m{};
+    for (const int_ops::IntOp& d : int_ops::kIntOps)
+      for (int o = 0; o < int_ops::kOpCount; ++o)
+        if (d.depends & (std::uint32_t{1} << o)) m[static_cast<std::size_t>(o)] |= std::uint32_t{1} << d.op;
+    return m;
+  }();
+
   void issue(const ControlPointBuffer& buffers, Context& ctx, int context_slot, int op, int block) {
-    const ControlPointBuffer::Entry& buf = buffers.entry(ctx.buffer);
-    const FxVec* base[3] = {buf.cp.b.data(), buf.cp.n.data(), ctx.t.data()};
-    const auto& src = operands_[static_cast<std::size_t>(op)];
-    auto operand = [&](int i) -> const FxVec& {
-      const int_ops::Operand& o = src[static_cast<std::size_t>(i)];
-      return base[static_cast<int>(o.net)][o.index];  // Net::B, N, T: the order of `base`
-    };
-    ctx.t[static_cast<std::size_t>(op)] = int_op(ctx.w, ctx.tag.u, ctx.tag.v, operand(0), operand(1), operand(2), bary_bits_);
+    const ControlPointsFx& cp = buffers.entry(ctx.buffer).cp;
+    // One instance per op, so that every operand is a load at a constant offset.
+    switch (op) {
+      case 0: compute<0>(cp, ctx); break;
+      case 1: compute<1>(cp, ctx); break;
+      case 2: compute<2>(cp, ctx); break;
+      case 3: compute<3>(cp, ctx); break;
+      case 4: compute<4>(cp, ctx); break;
+      case 5: compute<5>(cp, ctx); break;
+      case 6: compute<6>(cp, ctx); break;
+      case 7: compute<7>(cp, ctx); break;
+      case 8: compute<8>(cp, ctx); break;
+      case 9: compute<9>(cp, ctx); break;
+      case 10: compute<10>(cp, ctx); break;
+      case 11: compute<11>(cp, ctx); break;
+      case 12: compute<12>(cp, ctx); break;
+      case 13: compute<13>(cp, ctx); break;
+      default: break;
+    }
     ctx.issued |= std::uint32_t{1} << op;
     ints_.issue(context_slot, std::uint32_t{1} << op);
     issued_[static_cast<std::size_t>(block)] = IssuedOp{block, context_slot, op, ctx.seq};
   }
 
+  template <int_ops::Operand O>
+  static const FxVec& operand(const ControlPointsFx& cp, const Context& ctx) {
+    if constexpr (O.net == int_ops::Net::B) return cp.b[O.index];
+    else if constexpr (O.net == int_ops::Net::N) return cp.n[O.index];
+    else return ctx.t[O.index];
+  }
+  template <std::array<int_ops::Operand, 3> Src>
+  void compute_from(const ControlPointsFx& cp, Context& ctx, int op) const {
+    ctx.t[static_cast<std::size_t>(op)] = int_op(ctx.w, ctx.tag.u, ctx.tag.v, operand<Src[0]>(cp, ctx),
+                                                 operand<Src[1]>(cp, ctx), operand<Src[2]>(cp, ctx), bary_bits_);
+  }
+  template <int Op>
+  void compute(const ControlPointsFx& cp, Context& ctx) const {
+    if constexpr (Op == int_ops::kLinearNormalOp) {
+      if (linear_normals_) return compute_from<int_ops::operands(Op, NormalMode::Linear)>(cp, ctx, Op);
+    }
+    compute_from<int_ops::kIntOps[Op].operands>(cp, ctx, Op);
+  }
+
   int n_contexts_;
   int bary_bits_;
-  std::array<std::array<int_ops::Operand, 3>, int_ops::kOpCount> operands_;  // of this normal mode
+  bool linear_normals_;       // op kLinearNormalOp reads the linear operands
   std::uint32_t all_ops_;     // done mask of a finished vertex
   std::uint32_t absent_ops_;  // ops that do not exist in this mode (linear: 7, 8, 12)
   int normal_op_;             // temporary holding the output normal
   std::vector<Context> contexts_;
   int head_ = 0, count_ = 0;
+  std::uint32_t slot_mask_;        // one bit per context slot
+  std::uint32_t ready_slots_ = 0;  // bit s: context slot s has a ready op
   std::uint64_t next_seq_ = 0;
   Dpg dpg_;
   IntBlocks ints_;
@@ -180,7 +221,16 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
   ints_.complete_due([this](int context, std::uint32_t bit) {
     Context& c = contexts_[static_cast<std::size_t>(context)];
     c.done |= bit;
-    c.ready = dependences_met(c.done) & ~c.issued;
+    // Only the ops that depend on this one can have become ready.
+    std::uint32_t candidates = kDependents[static_cast<std::size_t>(std::countr_zero(bit))];
+    while (candidates != 0) {
+      const int d = std::countr_zero(candidates);
+      candidates &= candidates - 1;
+      const std::uint32_t deps = int_ops::kIntOps[static_cast<std::size_t>(d)].depends;
+      if ((c.done & deps) == deps) c.ready |= std::uint32_t{1} << d;
+    }
+    c.ready &= ~c.issued;  // absent ops (linear normals) are issued from the start
+    if (c.ready != 0) ready_slots_ |= std::uint32_t{1} << context;
   });
 
   if (allocate) {
@@ -196,6 +246,7 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     ctx.issued = absent_ops_;
     ctx.done = absent_ops_;
     ctx.ready = dependences_met(ctx.done) & ~ctx.issued;
+    if (ctx.ready != 0) ready_slots_ |= std::uint32_t{1} << tail;
     ctx.seq = next_seq_++;
     if (allocated_seq) *allocated_seq = ctx.seq;
     dpg_.consume(buf.L);
