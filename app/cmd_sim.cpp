@@ -31,6 +31,7 @@ struct SimArgs {
   std::string output;
   bool schedule = false;
   bool errors = false;
+  bool no_fast_forward = false;
   AdaptiveOptions adaptive;
 };
 
@@ -57,6 +58,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   if (!a.stats.empty()) stats = std::make_unique<AtomicOutput>(a.stats);
   sim::SimHooks hooks;
   hooks.measure_errors = a.errors;
+  hooks.fast_forward = !a.no_fast_forward;
   std::unique_ptr<MeshWriter> writer;
   if (!a.output.empty()) {
     writer = std::make_unique<MeshWriter>(a.output, out_vertices, out_triangles);
@@ -115,6 +117,9 @@ void register_sim(CLI::App& app) {
   sub->add_flag("--errors", args->errors,
                 "compare every vertex with the float reference: end to end against the mesh, and the "
                 "arithmetic alone against its derived bound (summary and --stats \"errors\")");
+  sub->add_flag("--no-fast-forward", args->no_fast_forward,
+                "clock every cycle one by one instead of taking the cycles in which nothing moves at once "
+                "(same results, slower; docs/microarchitecture.md §11)");
   sub->callback([args, flags] { run_sim(*args, *flags); });
 }
 

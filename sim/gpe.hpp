@@ -92,6 +92,34 @@ class Gpe {
     return c;
   }
 
+  // Fast-forward: how many cycles in a row, from now, the GPE presents the same values while
+  // `vtx_valid` stays as it is — the rest of a busy countdown, or endless (~0) waiting for a
+  // vertex; 0 when it takes a vertex now or may stall at random (its draws cannot be skipped).
+  std::uint64_t quiet_cycles(bool vtx_valid) const {
+    if (stall_prob_ > 0) return 0;
+    if (remaining_ > 0) return static_cast<std::uint64_t>(remaining_);
+    return vtx_valid ? 0 : ~std::uint64_t{0};
+  }
+  // `n` <= quiet_cycles(vtx_valid) cycles at once, as n tick() calls would; returns the last.
+  GpeCycle skip(std::uint64_t n, bool vtx_valid, bool cpg_computing) {
+    GpeCycle c;
+    stats_.cycles += n;
+    if (remaining_ > 0) {
+      remaining_ -= static_cast<int>(n);
+      stats_.busy += n;
+      c.cls = GpeClass::Busy;
+    } else {
+      c.ready = true;
+      c.spare = !vtx_valid;
+      c.cls = cpg_computing ? GpeClass::Cpg : GpeClass::Starved;
+      (cpg_computing ? stats_.cpg : stats_.starved) += n;
+    }
+    return c;
+  }
+
+  // Whether the next cycle presents ready, when it cannot stall (stall probability 0).
+  bool ready_now() const { return remaining_ == 0; }
+
   const GpeStats& stats() const { return stats_; }
   int cycles_per_vertex() const { return cycles_per_vertex_; }
   double stall_prob() const { return stall_prob_; }

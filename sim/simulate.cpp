@@ -98,7 +98,25 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   TeStats interval;            // TE classes since the last accepted vertex
   bool interval_late = false;  // the GPE waited in this interval
 
+  const bool fast_forward = hooks.fast_forward && observers.empty();
   while (accepted < total) {
+    // A quiet stretch starts with a cycle that issued nothing: only then is it worth asking.
+    if (fast_forward && unit.activity().ops_issued == 0 && !tb.gpe_cycle().accepted) {
+      // Quiet cycles at once, never past the cycle at which the watchdog would fire.
+      const std::uint64_t n = tb.fast_forward(unit, watchdog + 1 - (cycle - last_progress));
+      if (n > 0) {
+        add_class(interval, unit.activity().te, n);
+        if (tb.gpe_cycle().spare && accepted > 0) {
+          r.gpe_waited += n;
+          interval_late = true;
+        }
+        cycle += n;
+        if (cycle - last_progress > watchdog)
+          throw std::logic_error("cycle model: no vertex accepted for " + std::to_string(watchdog) +
+                                 " cycles (cycle " + std::to_string(cycle) + ")");
+        continue;
+      }
+    }
     const UnitInputs& in = tb.inputs(unit);
     const GpeCycle& g = tb.gpe_cycle();
     if (g.accepted) {

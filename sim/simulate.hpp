@@ -45,6 +45,9 @@ struct SimHooks {
   std::function<void(const PatchOut&)> on_patch;   // every patch once its last vertex is accepted
   std::vector<CycleObserver*> observers;
   bool measure_errors = false;  // every vertex against the float reference (SimResult::errors)
+  // Take the cycles in which nothing moves at once (exact; docs/microarchitecture.md §11). Off
+  // whenever an observer watches the run cycle by cycle.
+  bool fast_forward = true;
 };
 
 // The unit's output against the float64 reference (sim/reference_check.hpp): end to end against

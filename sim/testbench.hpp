@@ -6,6 +6,7 @@
 // for any DUT with tri_ready(), vtx_valid() and cpg_computing() (sim::Unit, rtl::RtlUnit).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -15,6 +16,7 @@
 #include "model/pattern.hpp"
 #include "sim/gpe.hpp"
 #include "sim/host.hpp"
+#include "sim/unit.hpp"
 #include "sim/unit_io.hpp"
 
 namespace tessim::sim {
@@ -110,7 +112,29 @@ class BasicTestbench {
     return in_;
   }
 
-  const GpeCycle& gpe_cycle() const { return cycle_; }  // of the last inputs()
+  // Fast-forward (docs/microarchitecture.md §11): in place of up to `limit` inputs()/tick()
+  // pairs, the cycles from now in which neither the DUT nor the GPE moves data, taken at once.
+  // Returns how many (0: the next cycle does something; call inputs() and tick() as usual).
+  // Only for sim::Unit: the Verilated RTL has to be clocked cycle by cycle.
+  std::uint64_t fast_forward(Unit& unit, std::uint64_t limit) {
+    if (pushed_ || limit == 0) return 0;  // inputs() has a triangle to hand over first
+    const bool vtx_valid = unit.vtx_valid();
+    std::uint64_t n = gpe_.quiet_cycles(vtx_valid);
+    if (n == 0) return 0;
+    UnitInputs in = in_;
+    const bool ready = gpe_.ready_now();
+    in.vtx_ready = ready;
+    in.cpg_step = ready && !vtx_valid;
+    n = std::min({n, unit.quiet_cycles(in), limit});
+    if (n == 0) return 0;
+    cycle_ = gpe_.skip(n, vtx_valid, unit.cpg_computing());
+    in_.vtx_ready = cycle_.ready;
+    in_.cpg_step = cycle_.spare;
+    unit.skip(n, in_);
+    return n;
+  }
+
+  const GpeCycle& gpe_cycle() const { return cycle_; }  // of the last inputs() or fast_forward()
   bool pushed() const { return pushed_; }               // the last inputs() handed over a triangle
   const Gpe& gpe() const { return gpe_; }
   std::size_t triangles_taken() const { return taken_; }  // triangles the DUT took since reset

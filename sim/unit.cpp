@@ -98,4 +98,35 @@ void Unit::tick(const UnitInputs& in) {
   tri_fifo_.commit(tri_push, cpg == CpgAction::Accept);
 }
 
+std::uint64_t Unit::quiet_cycles(const UnitInputs& in) const {
+  if (in.tri_valid && !tri_fifo_.full()) return 0;  // push
+  if (in.vtx_ready && !vtx_fifo_.empty()) return 0;  // pop
+  if (!te_.quiet()) return 0;                        // issue or completion
+  if (te_.head_done() && !vtx_fifo_.full()) return 0;  // retirement
+  if (te_.can_allocate(buffers_.rd_full())) return 0;  // allocation
+  return cpg_.repeats(cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step));
+}
+
+void Unit::skip(std::uint64_t n, const UnitInputs& in) {
+  if (n == 0) return;
+  // The decisions of tick(), which quiet_cycles() guarantees are the same in each of the n cycles.
+  const bool head_done = te_.head_done();
+  const bool point_available = buffers_.rd_full();
+  const CpgAction cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
+  const bool head_waiting = te_.head_waiting();
+  const int issued = te_.schedule(buffers_);  // issues nothing: the TE is quiet
+  const TeClass te = te_.classify(issued, head_waiting, head_done, vtx_fifo_.full(), point_available,
+                                  cpg_.busy() || !tri_fifo_.empty());
+  const CpgClass cpg_class = CpgBlock::classify(cpg);
+  act_.cycle = counters_.cycles() + n - 1;
+  act_.ops_issued = issued;
+  act_.tri_pushed = act_.vtx_popped = act_.allocated = act_.retired = false;
+  act_.te = te;
+  act_.cpg = cpg_class;
+  act_.cpg_action = cpg;
+  counters_.count(0, te, cpg_class, n);
+  te_.skip(n);
+  cpg_.commit_repeated(cpg, n);
+}
+
 }  // namespace tessim::sim

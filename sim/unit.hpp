@@ -61,6 +61,16 @@ class Unit {
   // The clock edge: one cycle with these inputs.
   void tick(const UnitInputs& in);
 
+  // Fast-forward (docs/microarchitecture.md §11). quiet_cycles(in): how many cycles in a row,
+  // from now, with these inputs held, would move no data (no push, pop, allocation, issue,
+  // retirement, CPG accept or write) and change only counters and the CPG's countdown; 0 if the
+  // next cycle does something, kForever if nothing ends the quiet stretch but a change of
+  // inputs. skip(n, in), n <= quiet_cycles(in): those n cycles at once, with every counter and
+  // the activity of the last one exactly as n tick(in) calls would leave them.
+  static constexpr std::uint64_t kForever = CpgBlock::kForever;
+  std::uint64_t quiet_cycles(const UnitInputs& in) const;
+  void skip(std::uint64_t n, const UnitInputs& in);
+
   const UnitStats& stats() const { return counters_.stats(); }
   const HardwareConfig& hardware() const { return hw_; }
   int cpg_cycles() const { return cpg_.cycles(); }  // C of doc §5 for this configuration

@@ -49,6 +49,24 @@ class CpgBlock {
     return wr_empty ? CpgAction::Write : CpgAction::Blocked;
   }
 
+  // Cycles in a row the action `a` (from decide()) repeats with unchanged inputs while only the
+  // counter moves: a countdown lasts `counter` cycles; Idle, WaitGpe and Blocked last as long as
+  // their inputs do (kForever); Accept and Write change the state at once (0).
+  static constexpr std::uint64_t kForever = ~std::uint64_t{0};
+  std::uint64_t repeats(CpgAction a) const {
+    switch (a) {
+      case CpgAction::Compute: return static_cast<std::uint64_t>(counter_);
+      case CpgAction::Idle:
+      case CpgAction::WaitGpe:
+      case CpgAction::Blocked: return kForever;
+      default: return 0;
+    }
+  }
+  // `n` cycles of action `a` at once (n <= repeats(a)), as n commit() calls would.
+  void commit_repeated(CpgAction a, std::uint64_t n) {
+    if (a == CpgAction::Compute) counter_ -= static_cast<int>(n);
+  }
+
   static CpgClass classify(CpgAction a) {
     switch (a) {
       case CpgAction::Accept:

@@ -33,6 +33,11 @@ class IntBlocks {
   }
 
   int blocks() const { return blocks_; }
+  bool empty() const {  // no completion pending
+    for (int i = 0; i < latency_; ++i)
+      if (pending_count_[static_cast<std::size_t>(i)] != 0) return false;
+    return true;
+  }
   int latency() const { return latency_; }
 
   // An op issued in this cycle: its done bit is due at the end of cycle t + Λ - 1, whose slot
@@ -42,6 +47,11 @@ class IntBlocks {
     int& count = pending_count_[static_cast<std::size_t>(slot)];
     pending_[static_cast<std::size_t>(slot)][static_cast<std::size_t>(count++)] =
         Completion{static_cast<std::uint8_t>(context), done_bit};
+  }
+
+  // `cycles` clock edges with nothing pending (empty()).
+  void skip(std::uint64_t cycles) {
+    due_slot_ = static_cast<int>((static_cast<std::uint64_t>(due_slot_) + cycles) % static_cast<std::uint64_t>(latency_));
   }
 
   // The clock edge: hands the completions due in this cycle to `apply(context, bit)`.

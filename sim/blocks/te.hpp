@@ -51,6 +51,10 @@ class Te {
     return count_ > 0 && h.done != all_ops_ && h.ready == 0;
   }
   bool can_allocate(bool point_available) const { return count_ < n_contexts_ && point_available; }
+  // Nothing to issue and no result in flight: without a retirement or an allocation the TE's
+  // state stays as it is.
+  bool quiet() const { return ready_slots_ == 0 && ints_.empty(); }
+  void skip(std::uint64_t cycles) { ints_.skip(cycles); }  // `cycles` quiet clock edges
 
   // Scheduler of the cycle: issues up to N ready ops reading the control points in `buffers`;
   // returns how many (the i-th went to INT block i, described by issued_ops()[i]).

@@ -1,0 +1,218 @@
+// Fast-forward (docs/microarchitecture.md §11) is exact: a unit that takes its quiet cycles at
+// once is, after every stretch it skips, in the same state as a unit clocked cycle by cycle —
+// same counters, outputs, GPE statistics and activity — and a whole-mesh run reports the same
+// result and the same vertices with and without it.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "model/mesh.hpp"
+#include "model/mesh_io.hpp"
+#include "sim/config.hpp"
+#include "sim/gpe.hpp"
+#include "sim/host.hpp"
+#include "sim/simulate.hpp"
+#include "sim/testbench.hpp"
+#include "sim/unit.hpp"
+
+namespace tessim::sim {
+namespace {
+
+const char* const kWuson = "/usr/share/assimp/models/PLY/Wuson.ply";
+
+const Mesh& wuson() {
+  static const Mesh mesh = load_mesh(kWuson);
+  return mesh;
+}
+
+// The first `count` triangles of Wuson with factors 1..max_L drawn from `seed`.
+std::vector<TriangleFx> stream_of(const UnitConfig& cfg, std::size_t count, int max_L, std::uint64_t seed) {
+  const Mesh& mesh = wuson();
+  const HostScaling scaling = host_scaling(mesh);
+  SplitMix64 rng(seed);
+  std::vector<TriangleFx> out;
+  for (std::size_t t = 0; t < count && t < mesh.triangle_count(); ++t) {
+    const int L = 1 + static_cast<int>(rng.next() % static_cast<std::uint64_t>(max_L));
+    out.push_back(to_fixed(mesh, t, scaling, cfg.format, L));
+  }
+  return out;
+}
+
+struct Case {
+  std::string name;
+  NormalMode normals = NormalMode::Quadratic;
+  int n = 2, latency = 1, contexts = 4, k = 8, vtx_fifo = 2, tri_fifo = 2;
+  CpgMapping mapping = CpgMapping::Dedicated;
+  double stall = 0.0;
+  int max_L = 12;
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+UnitConfig config_of(const Case& c) {
+  UnitConfig cfg;
+  cfg.normals = c.normals;
+  cfg.int_blocks = c.n;
+  cfg.int_latency = c.latency;
+  cfg.te_contexts = c.contexts;
+  cfg.gpe_cycles = c.k;
+  cfg.vtx_fifo_depth = c.vtx_fifo;
+  cfg.tri_fifo_depth = c.tri_fifo;
+  cfg.cpg_mapping = c.mapping;
+  cfg.cpg_gpe_cycles = 37;
+  cfg.gpe_stall_prob = c.stall;
+  cfg.seed = 11;
+  cfg.validate("test");
+  return cfg;
+}
+
+// Every mode, N = 1..4, latencies, contexts, fast and slow geometry engines, both CPG mappings,
+// FIFO depths, and random stalls (where nothing may be skipped).
+std::vector<Case> cases() {
+  return {
+      {"quadratic_n2_k8", NormalMode::Quadratic, 2, 1, 4, 8},
+      {"quadratic_n1_k1", NormalMode::Quadratic, 1, 1, 4, 1},
+      {"quadratic_n4_k40", NormalMode::Quadratic, 4, 1, 4, 40},
+      {"reflect_n3_k3_lat3", NormalMode::Reflect, 3, 3, 4, 3},
+      {"reflect_n2_v1_k20", NormalMode::Reflect, 2, 1, 1, 20},
+      {"linear_n4_k2", NormalMode::Linear, 4, 1, 4, 2},
+      {"linear_n1_lat2_v7_k12", NormalMode::Linear, 1, 2, 7, 12},
+      {"quadratic_n3_fifos_k25", NormalMode::Quadratic, 3, 1, 4, 25, 5, 1},
+      {"gpe_cpg_quadratic_n2_k4", NormalMode::Quadratic, 2, 1, 4, 4, 2, 2, CpgMapping::Gpe},
+      {"gpe_cpg_linear_n4_k9", NormalMode::Linear, 4, 2, 3, 9, 3, 3, CpgMapping::Gpe},
+      {"reflect_n2_k8_heavy", NormalMode::Reflect, 2, 1, 4, 8, 2, 2, CpgMapping::Dedicated, 0.0, 40},
+      {"quadratic_n2_stall", NormalMode::Quadratic, 2, 1, 4, 6, 2, 2, CpgMapping::Dedicated, 0.3},
+  };
+}
+
+void expect_same_state(const Unit& a, const Unit& b, const Testbench& ta, const Testbench& tb,
+                       std::uint64_t cycle) {
+  ASSERT_EQ(a.stats(), b.stats()) << "counters at cycle " << cycle;
+  ASSERT_EQ(ta.gpe().stats(), tb.gpe().stats()) << "GPE at cycle " << cycle;
+  ASSERT_EQ(ta.accepted(), tb.accepted()) << "cycle " << cycle;
+  ASSERT_EQ(a.tri_ready(), b.tri_ready()) << "cycle " << cycle;
+  ASSERT_EQ(a.vtx_valid(), b.vtx_valid()) << "cycle " << cycle;
+  if (a.vtx_valid()) {
+    ASSERT_EQ(a.vtx(), b.vtx()) << "cycle " << cycle;
+  }
+  ASSERT_EQ(a.cpg_computing(), b.cpg_computing()) << "cycle " << cycle;
+  ASSERT_EQ(a.tri_fifo_count(), b.tri_fifo_count()) << "cycle " << cycle;
+  ASSERT_EQ(a.vtx_fifo_count(), b.vtx_fifo_count()) << "cycle " << cycle;
+  ASSERT_EQ(a.contexts_in_use(), b.contexts_in_use()) << "cycle " << cycle;
+  const CycleActivity& x = a.activity();
+  const CycleActivity& y = b.activity();
+  ASSERT_EQ(x.cycle, y.cycle);
+  ASSERT_EQ(x.te, y.te) << "cycle " << cycle;
+  ASSERT_EQ(x.cpg, y.cpg) << "cycle " << cycle;
+  ASSERT_EQ(x.cpg_action, y.cpg_action) << "cycle " << cycle;
+  ASSERT_EQ(x.ops_issued, y.ops_issued) << "cycle " << cycle;
+  ASSERT_EQ(ta.gpe_cycle().ready, tb.gpe_cycle().ready) << "cycle " << cycle;
+  ASSERT_EQ(ta.gpe_cycle().spare, tb.gpe_cycle().spare) << "cycle " << cycle;
+  ASSERT_EQ(ta.gpe_cycle().cls, tb.gpe_cycle().cls) << "cycle " << cycle;
+}
+
+class FastForward : public ::testing::TestWithParam<Case> {};
+
+// Unit `a` fast-forwards wherever it can; unit `b` is clocked through the same cycles one by one.
+TEST_P(FastForward, SkippedStretchesLeaveTheStateOfCycleByCycleClocking) {
+  const Case& c = GetParam();
+  const UnitConfig cfg = config_of(c);
+  const std::vector<TriangleFx> stream = stream_of(cfg, 160, c.max_L, 5);
+  Unit a(cfg), b(cfg);
+  Testbench ta(stream, cfg), tb(stream, cfg);
+  std::uint64_t cycle = 0, skipped = 0, stretches = 0;
+  while (!ta.done()) {
+    const std::uint64_t n = ta.fast_forward(a, 1'000'000);
+    if (n > 0) {
+      for (std::uint64_t i = 0; i < n; ++i) b.tick(tb.inputs(b));
+      skipped += n;
+      ++stretches;
+      cycle += n;
+    } else {
+      const UnitInputs& ia = ta.inputs(a);
+      const UnitInputs& ib = tb.inputs(b);
+      ASSERT_EQ(ia.tri_valid, ib.tri_valid);
+      ASSERT_EQ(ia.vtx_ready, ib.vtx_ready);
+      ASSERT_EQ(ia.cpg_step, ib.cpg_step);
+      a.tick(ia);
+      b.tick(ib);
+      ++cycle;
+    }
+    expect_same_state(a, b, ta, tb, cycle);
+    if (HasFatalFailure()) return;
+    ASSERT_LT(cycle, 50'000'000u) << "no end";
+  }
+  EXPECT_TRUE(tb.done());
+  if (c.stall > 0) {
+    EXPECT_EQ(skipped, 0u) << "random stalls must be drawn every cycle";
+  } else {
+    // Every case here has quiet stretches (a slow GPE, a CPG countdown or a full VTX FIFO).
+    EXPECT_GT(stretches, 0u);
+    EXPECT_GT(skipped, 0u);
+  }
+  RecordProperty("skipped_cycles", std::to_string(skipped));
+}
+
+// A whole-mesh run: every field of the result and every vertex, with and without fast-forward.
+TEST_P(FastForward, WholeMeshRunsAreIdentical) {
+  const Case& c = GetParam();
+  UnitConfig cfg = config_of(c);
+  cfg.tess_factor = 5;
+  const Mesh& mesh = wuson();
+  // Per-triangle factors 1..max_L on half of the mesh's triangles, as an adaptive workload.
+  std::vector<std::uint8_t> factors(mesh.triangle_count());
+  SplitMix64 rng(3);
+  for (auto& f : factors) f = static_cast<std::uint8_t>(1 + rng.next() % static_cast<std::uint64_t>(c.max_L));
+  for (const bool adaptive : {false, true}) {
+    std::vector<VertexFx> with, without;
+    SimHooks on, off;
+    on.on_vertex = [&](const VertexFx& v) { with.push_back(v); };
+    off.on_vertex = [&](const VertexFx& v) { without.push_back(v); };
+    off.fast_forward = false;
+    const std::span<const std::uint8_t> f = adaptive ? std::span<const std::uint8_t>(factors) : std::span<const std::uint8_t>();
+    const SimResult x = simulate(mesh, cfg, on, f);
+    const SimResult y = simulate(mesh, cfg, off, f);
+    EXPECT_EQ(x.unit, y.unit) << (adaptive ? "adaptive" : "uniform");
+    EXPECT_EQ(x.gpe, y.gpe);
+    EXPECT_EQ(x.gpe_waited, y.gpe_waited);
+    EXPECT_EQ(x.te_late, y.te_late);
+    EXPECT_EQ(x.degenerate_patches, y.degenerate_patches);
+    EXPECT_EQ(x.zero_normals, y.zero_normals);
+    nlohmann::json jx = stats_json(x), jy = stats_json(y);
+    jx.erase("wall_seconds");
+    jy.erase("wall_seconds");
+    EXPECT_EQ(jx, jy);
+    ASSERT_EQ(with.size(), without.size());
+    EXPECT_TRUE(with == without);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Configs, FastForward, ::testing::ValuesIn(cases()),
+                         [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
+
+// A geometry engine 10^5 times slower than the unit: nearly every cycle is skipped, and the
+// run still counts every one of them.
+TEST(FastForwardSlowGpe, CountsEveryCycle) {
+  UnitConfig cfg;
+  cfg.gpe_cycles = 100000;
+  cfg.tess_factor = 1;
+  cfg.validate("test");
+  const Mesh mesh = load_mesh("/usr/share/assimp/models/PLY/cube.ply");
+  const SimResult x = simulate(mesh, cfg);
+  SimHooks off;
+  off.fast_forward = false;
+  const SimResult y = simulate(mesh, cfg, off);
+  EXPECT_EQ(x.unit, y.unit);
+  EXPECT_EQ(x.gpe, y.gpe);
+  const std::uint64_t vertices = 3 * mesh.triangle_count();
+  EXPECT_EQ(x.unit.vertices_out, vertices);
+  EXPECT_GE(x.unit.cycles, (vertices - 1) * 100000);
+}
+
+}  // namespace
+}  // namespace tessim::sim
