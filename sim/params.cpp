@@ -46,7 +46,7 @@ const std::array<ParamSpec, 15> kParams{{
     {"int_latency", "--int-latency", "", "IntLatency", "Λ", H, I, 1, IntBlocks::kMaxLatency, {}, "cycles",
      "INT latency: cycles from issue to a result visible to a dependent operation",
      TESSIM_PARAM_FIELD(int_latency)},
-    {"te_contexts", "--te-contexts", "--contexts", "Contexts", "V", H, I, 1, 16, {}, "vertices",
+    {"te_contexts", "--te-contexts", "--contexts", "Contexts", "V", H, I, 1, Te::kMaxContexts, {}, "vertices",
      "vertices the TE keeps in flight (temporary-register sets)", TESSIM_PARAM_FIELD(te_contexts)},
     {"gpe_cycles", "--gpe-cycles", "", nullptr, "K", E, I, 1, kMaxCycles, {}, "cycles",
      "the geometry engine accepts at most one vertex every K cycles", TESSIM_PARAM_FIELD(gpe_cycles)},

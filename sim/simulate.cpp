@@ -95,7 +95,9 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   std::uint64_t accepted = 0;
   std::uint64_t last_progress = 0;
   std::uint64_t cycle = 0;
-  TeStats interval;            // TE classes since the last accepted vertex
+  // The TE's class counts at the end of the last accepting cycle: an interval's classes are the
+  // counts at its end minus these.
+  std::array<std::uint64_t, kTeClasses.size()> interval_start{};
   bool interval_late = false;  // the GPE waited in this interval
 
   const bool fast_forward = hooks.fast_forward && observers.empty();
@@ -105,7 +107,6 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
       // Quiet cycles at once, never past the cycle at which the watchdog would fire.
       const std::uint64_t n = tb.fast_forward(unit, watchdog + 1 - (cycle - last_progress));
       if (n > 0) {
-        add_class(interval, unit.activity().te, n);
         if (tb.gpe_cycle().spare && accepted > 0) {
           r.gpe_waited += n;
           interval_late = true;
@@ -159,14 +160,16 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
     }
     const bool gpe_waited = g.spare && accepted > 0;  // GPE ready, no vertex, after its first
     unit.tick(in);
-    count_class(interval, unit.activity().te);
     if (gpe_waited) {
       ++r.gpe_waited;
       interval_late = true;
     }
     if (g.accepted) {
-      if (interval_late) add(r.te_late, interval);
-      interval = TeStats{};
+      const auto& now = unit.te_class_cycles();
+      if (interval_late)
+        for (TeClass c : kTeClasses)
+          add_class(r.te_late, c, now[static_cast<std::size_t>(c)] - interval_start[static_cast<std::size_t>(c)]);
+      interval_start = now;
       interval_late = false;
     }
     if (!observers.empty()) {

@@ -72,6 +72,7 @@ class Unit {
   void skip(std::uint64_t n, const UnitInputs& in);
 
   const UnitStats& stats() const { return counters_.stats(); }
+  const std::array<std::uint64_t, kTeClasses.size()>& te_class_cycles() const { return counters_.te_class_cycles(); }
   const HardwareConfig& hardware() const { return hw_; }
   int cpg_cycles() const { return cpg_.cycles(); }  // C of doc §5 for this configuration
 

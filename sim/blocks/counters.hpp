@@ -84,6 +84,8 @@ class Counters {
   }
 
   std::uint64_t cycles() const { return cycles_; }
+  // Cycles so far per TE class, indexed by TeClass (cheap: nothing derived).
+  const std::array<std::uint64_t, kTeClasses.size()>& te_class_cycles() const { return te_; }
 
   // One cycle: `issued` ops went to INT blocks 0..issued-1.
   void count(int issued, TeClass te, CpgClass cpg, bool tri_push, bool vtx_pop) {

@@ -1,5 +1,7 @@
 #include "sim/blocks/te.hpp"
 
+#include <stdexcept>
+
 namespace tessim::sim {
 
 const char* to_string(TeClass c) {
@@ -21,10 +23,9 @@ Te::Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const 
       all_ops_((std::uint32_t{1} << int_ops::kOpCount) - 1),
       absent_ops_(int_ops::absent_ops(normals)),
       normal_op_(int_ops::normal_op(normals)),
-      contexts_(static_cast<std::size_t>(contexts)),
       dpg_(format),
-      ints_(int_blocks, int_latency),
-      issued_(static_cast<std::size_t>(int_blocks)) {
+      ints_(int_blocks, int_latency) {
+  if (contexts < 1 || contexts > kMaxContexts) throw std::invalid_argument("Te: V out of range");
   linear_normals_ = normals == NormalMode::Linear;
   slot_mask_ = static_cast<std::uint32_t>((std::uint64_t{1} << contexts) - 1);
 }
@@ -33,6 +34,7 @@ void Te::reset() {
   for (Context& c : contexts_) c.issued = c.done = c.ready = 0;
   head_ = count_ = 0;
   ready_slots_ = 0;
+  issued_count_ = 0;
   next_seq_ = 0;
   dpg_.reset();
   ints_.reset();

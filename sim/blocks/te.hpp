@@ -36,6 +36,8 @@ struct IssuedOp {
 
 class Te {
  public:
+  static constexpr int kMaxContexts = 16;  // V: the configuration limit (sim/params.cpp)
+
   Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const NumberFormat& format);
 
   void reset();
@@ -78,6 +80,7 @@ class Te {
     }
     // All N blocks taken and a context still has a ready op: it waits for an INT block.
     left_over_ = ready_slots_ != 0;
+    issued_count_ = issued;
     return issued;
   }
   // Of the last schedule(): a ready op was left unissued because all N INT blocks were taken.
@@ -163,7 +166,7 @@ class Te {
       default: break;
     }
     ctx.issued |= std::uint32_t{1} << op;
-    ints_.issue(context_slot, std::uint32_t{1} << op);
+    if (ints_.latency() > 1) ints_.issue(context_slot, std::uint32_t{1} << op);  // Λ = 1: issued_ is the list
     issued_[static_cast<std::size_t>(block)] = IssuedOp{block, context_slot, op, ctx.seq};
   }
 
@@ -192,15 +195,16 @@ class Te {
   std::uint32_t all_ops_;     // done mask of a finished vertex
   std::uint32_t absent_ops_;  // ops that do not exist in this mode (linear: 7, 8, 12)
   int normal_op_;             // temporary holding the output normal
-  std::vector<Context> contexts_;
+  std::array<Context, kMaxContexts> contexts_{};
   int head_ = 0, count_ = 0;
   std::uint32_t slot_mask_;        // one bit per context slot
   std::uint32_t ready_slots_ = 0;  // bit s: context slot s has a ready op
   std::uint64_t next_seq_ = 0;
   Dpg dpg_;
   IntBlocks ints_;
-  std::vector<IssuedOp> issued_;
+  std::array<IssuedOp, IntBlocks::kMaxBlocks> issued_{};
   bool left_over_ = false;
+  int issued_count_ = 0;  // ops the last schedule() issued
 };
 
 // Inline: called every cycle from Unit::tick.
@@ -221,8 +225,9 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     head_ = head_ + 1 == n_contexts_ ? 0 : head_ + 1;
   }
 
-  // INT results due at the end of this cycle (issued Λ - 1 cycles ago, or just now for Λ = 1).
-  ints_.complete_due([this](int context, std::uint32_t bit) {
+  // INT results due at the end of this cycle: issued Λ - 1 cycles ago, or for Λ = 1 the ops
+  // this cycle issued.
+  auto complete = [this](int context, std::uint32_t bit) {
     Context& c = contexts_[static_cast<std::size_t>(context)];
     c.done |= bit;
     // Only the ops that depend on this one can have become ready.
@@ -235,7 +240,16 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     }
     c.ready &= ~c.issued;  // absent ops (linear normals) are issued from the start
     if (c.ready != 0) ready_slots_ |= std::uint32_t{1} << context;
-  });
+  };
+  if (ints_.latency() == 1) {
+    for (int i = 0; i < issued_count_; ++i) {
+      const IssuedOp& op = issued_[static_cast<std::size_t>(i)];
+      complete(op.context, std::uint32_t{1} << op.op);
+    }
+    issued_count_ = 0;
+  } else {
+    ints_.complete_due(complete);
+  }
 
   if (allocate) {
     const ControlPointBuffer::Entry& buf = buffers.rd();
