@@ -107,7 +107,7 @@ struct SpeedRunArgs {
   std::string mesh = "/usr/share/assimp/models/PLY/Wuson.ply";
   int tess_factor = 8;
   std::vector<int> int_blocks{1, 2, 4};
-  int gpe_cycles = sim::EnvironmentConfig{}.gpe_cycles;
+  std::vector<int> gpe_cycles{sim::EnvironmentConfig{}.gpe_cycles};
   int repeat = 5;
 };
 void add_speed_run_options(CLI::App& sub, SpeedRunArgs& args, const char* int_blocks_help);
