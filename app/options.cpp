@@ -55,9 +55,11 @@ void add_speed_run_options(CLI::App& sub, SpeedRunArgs& args, const char* int_bl
       ->transform(number_check<int>("command line", "-L", "1..64"))
       ->capture_default_str();
   sub.add_option("--int", args.int_blocks, int_blocks_help)
+      ->delimiter(',')
       ->transform(number_check<int>("command line", "--int", type_range<int>()))
       ->capture_default_str();
   sub.add_option("--gpe-cycles", args.gpe_cycles, "GPE cycles per vertex K (one or more)")
+      ->delimiter(',')
       ->transform(number_check<int>("command line", "--gpe-cycles", type_range<int>()))
       ->capture_default_str();
   sub.add_option("--repeat", args.repeat, "runs per configuration (median reported)")

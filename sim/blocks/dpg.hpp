@@ -3,8 +3,10 @@
 // (0,L). A point is consumed when a TE context is allocated for it.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
+#include "model/pattern.hpp"
 #include "sim/fixed.hpp"
 
 namespace tessim::sim {
@@ -22,12 +24,13 @@ class Dpg {
   void reset() { j_ = k_ = 0; }
 
   // The current point of a patch with factor L.
-  DpgPoint point(int L) const {
+  DpgPoint point(int L) {
+    if (L != weights_L_) load_weights(L);
     DpgPoint p;
     p.j = j_;
     p.k = k_;
-    p.u = bary_weight(j_, L, format_.bary_bits);
-    p.v = bary_weight(k_, L, format_.bary_bits);
+    p.u = weights_[static_cast<std::size_t>(j_)];
+    p.v = weights_[static_cast<std::size_t>(k_)];
     p.w = format_.bary_one() - p.u - p.v;
     p.last = k_ == L;
     return p;
@@ -46,8 +49,17 @@ class Dpg {
   }
 
  private:
+  // bary_weight(i, L) for i = 0..L, kept for the factor of the patches being walked (the
+  // hardware's weights are a function of (i, L); the model saves two divisions per point).
+  void load_weights(int L) {
+    for (int i = 0; i <= L; ++i) weights_[static_cast<std::size_t>(i)] = bary_weight(i, L, format_.bary_bits);
+    weights_L_ = L;
+  }
+
   NumberFormat format_;
   int j_ = 0, k_ = 0;
+  int weights_L_ = 0;
+  std::array<std::int64_t, kMaxTessFactor + 1> weights_{};
 };
 
 }  // namespace tessim::sim

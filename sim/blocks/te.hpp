@@ -257,8 +257,15 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     if (tail >= n_contexts_) tail -= n_contexts_;
     Context& ctx = contexts_[static_cast<std::size_t>(tail)];
     const DpgPoint p = dpg_.point(buf.L);
-    ctx.tag = VertexFx{.pos = {}, .nrm = {}, .u = p.u, .v = p.v, .j = p.j, .k = p.k, .L = buf.L, .id = buf.id,
-                       .last = p.last, .flags = buf.cp.flags};
+    // pos and nrm are written at retirement.
+    ctx.tag.u = p.u;
+    ctx.tag.v = p.v;
+    ctx.tag.j = p.j;
+    ctx.tag.k = p.k;
+    ctx.tag.L = buf.L;
+    ctx.tag.id = buf.id;
+    ctx.tag.last = p.last;
+    ctx.tag.flags = buf.cp.flags;
     ctx.w = p.w;
     ctx.buffer = static_cast<std::uint8_t>(buffers.rd_ptr());
     ctx.issued = absent_ops_;
