@@ -73,6 +73,8 @@ struct MeshWriter::Impl {
   std::vector<std::uint32_t> uniform_indices;
   std::string buffer;
 
+  static constexpr std::size_t kBlock = std::size_t{1} << 20;
+
   void write_buffer() {
     out.stream().write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
     buffer.clear();
@@ -168,7 +170,7 @@ void MeshWriter::append(int L, std::span<const glm::dvec3> positions, std::span<
   }
   w.vertices += n;
   w.triangles += t;
-  w.write_buffer();
+  if (w.buffer.size() >= Impl::kBlock) w.write_buffer();  // large blocks: one system call per MiB
 }
 
 void MeshWriter::finish() {
@@ -187,7 +189,7 @@ void MeshWriter::finish() {
           const unsigned char corners = 3;
           append_raw(w.buffer, &corners, 1);
           append_raw(w.buffer, &w.explicit_faces[next_explicit], 3 * sizeof(std::uint32_t));
-          if (w.buffer.size() > (1u << 20)) w.write_buffer();
+          if (w.buffer.size() >= Impl::kBlock) w.write_buffer();
         }
         base += static_cast<std::uint32_t>(run.vertices);
         continue;
@@ -203,11 +205,11 @@ void MeshWriter::finish() {
           append_raw(w.buffer, indices, sizeof indices);
         }
         base += static_cast<std::uint32_t>(pattern_vertex_count(L));
-        if (w.buffer.size() > (1u << 20)) w.write_buffer();
+        if (w.buffer.size() >= Impl::kBlock) w.write_buffer();
       }
     }
-    w.write_buffer();
   }
+  w.write_buffer();
   w.out.commit();
   w.finished = true;
 }
