@@ -24,6 +24,7 @@ struct CosimArgs {
   std::string mesh = "/usr/share/assimp/models/PLY/Wuson.ply";
   std::size_t random_count = 0;
   int random_max_L = 8;
+  double random_extent = 1.0;
   int seeds = 1;
   std::string variant;
   bool verif = false;
@@ -77,6 +78,8 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   std::vector<sim::TriangleFx> stream;
   std::string source;
   if (a.random_count > 0) {
+    if (!(a.random_extent > 0 && a.random_extent <= 1000))
+      throw InputError("command line", "--random-extent", std::to_string(a.random_extent) + " is outside (0, 1000]");
     if (a.random_max_L < 1 || a.random_max_L > kMaxTessFactor)
       throw InputError("command line", "--random-max-L", std::to_string(a.random_max_L) + " is outside 1..64");
     source = std::to_string(a.random_count) + " random triangles";
@@ -100,7 +103,7 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     opts.seed = cfg.seed + static_cast<std::uint64_t>(s);
     opts.unit.seed = opts.seed;
     if (a.random_count > 0)
-      stream = cosim::random_triangles(a.random_count, opts.seed, cfg.format, a.random_max_L);
+      stream = cosim::random_triangles(a.random_count, opts.seed, cfg.format, a.random_max_L, 0.1, a.random_extent);
     std::cout << "stream: " << source << "\n";
     const cosim::CosimReport rep = cosim::run_cosim(stream, opts);
     std::cout << cosim::format_report(rep, opts) << std::flush;
@@ -122,6 +125,11 @@ void register_cosim(CLI::App& app) {
       ->transform(number_check<std::size_t>("command line", "--random", type_range<std::size_t>()));
   cmd->add_option("--random-max-L", args->random_max_L, "Largest factor of the random triangles (1..64)")
       ->transform(number_check<int>("command line", "--random-max-L", "1..64"));
+  cmd->add_option("--random-extent", args->random_extent,
+                  "Scale of the random triangles' positions, clamped to the coordinate range (near 2^I the "
+                  "arithmetic saturates)")
+      ->transform(number_check<double>("command line", "--random-extent", "0.001..1000"))
+      ->capture_default_str();
   // --config and every parameter of sim/params.hpp (--int-blocks/--int selects the RTL build nN;
   // --seed also seeds the RTL's X randomisation).
   auto flags = std::make_shared<ConfigFlags>(*cmd);

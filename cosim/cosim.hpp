@@ -70,9 +70,10 @@ std::string format_report(const CosimReport& r, const CosimOptions& opts);
 
 // A random triangle stream for verification: positions in [-0.9, 0.9]^3, normals near the
 // face normal, factors 1..max_L, and a share of degenerate triangles (repeated vertices,
-// collinear points, opposite normals).
+// collinear points, opposite normals). `extent` scales the positions (clamped to the coordinate
+// range): near 2^I the control points leave the range and the arithmetic saturates.
 std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t seed,
                                               const sim::NumberFormat& fmt, int max_L,
-                                              double degenerate_share = 0.1);
+                                              double degenerate_share = 0.1, double extent = 1.0);
 
 }  // namespace tessim::cosim

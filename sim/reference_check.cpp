@@ -86,6 +86,11 @@ ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& s
 }
 
 bool ArithmeticCheck::check(const VertexFx& v) {
+  // A clamped patch is outside the bound's premise (no result left the range): counted, not compared.
+  if (v.flags & kFlagSaturated) {
+    ++saturated_;
+    return true;
+  }
   if (patch_id_ != v.id) {
     const TriangleFx tri = triangle_(v.id);
     patch_ = make_patch(dequantized_input(tri, cfg_.format), cfg_.normals);
@@ -119,7 +124,7 @@ bool ArithmeticCheck::check(const VertexFx& v) {
   return !beyond;
 }
 
-ArithmeticErrors ArithmeticCheck::result() const { return {acc_.result(), beyond_, worst_}; }
+ArithmeticErrors ArithmeticCheck::result() const { return {acc_.result(), beyond_, saturated_, worst_}; }
 
 MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg)
     : mesh_(mesh), scaling_(scaling), cfg_(cfg), diagonal_(bounding_box(mesh).diagonal()) {
@@ -160,6 +165,7 @@ nlohmann::json to_json(const ErrorStats& e) {
 nlohmann::json to_json(const ArithmeticErrors& e) {
   nlohmann::json j = to_json(e.stats);
   j["beyond_bound"] = e.beyond_bound;
+  j["saturated_vertices"] = e.saturated;
   if (!e.worst.empty()) j["worst"] = e.worst;
   return j;
 }

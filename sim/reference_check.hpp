@@ -51,6 +51,7 @@ class ErrorAccumulator {
 struct ArithmeticErrors {
   ErrorStats stats;
   std::uint64_t beyond_bound = 0;  // vertices outside the derived bound
+  std::uint64_t saturated = 0;     // vertices of saturated patches: the bound does not apply
   std::string worst;               // the first vertex beyond the bound, and why
 };
 
@@ -82,6 +83,7 @@ class ArithmeticCheck {
   double normal_bound_ = 0;
   ErrorAccumulator acc_;
   std::uint64_t beyond_ = 0;
+  std::uint64_t saturated_ = 0;
   std::string worst_;
 };
 

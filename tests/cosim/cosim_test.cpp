@@ -168,6 +168,43 @@ TEST(CosimInjectedBug, DroppedStallIsCaught) {
   expect_pass(run_cosim(stream, o), o);
 }
 
+// The build away from the defaults (N = 3, INT latency 3, V = 6) on random triangles under each
+// kind of backpressure and in every normal mode: the pipeline registers of the INT blocks and
+// results arriving Λ cycles after issue are covered by the default test matrix.
+TEST(CosimLatency3, AgreesInEveryModeAndUnderBackpressure) {
+  for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+    for (const Backpressure bp : {Backpressure{"none", 0.0, 1}, Backpressure{"random", 0.3, 2}}) {
+      CosimOptions o = options(3, bp.stall, bp.gpe_cycles, 41);
+      o.variant = "n3_lat3";
+      o.unit.int_latency = 3;
+      o.unit.te_contexts = 6;
+      o.unit.normals = mode;
+      const auto stream = random_triangles(24, o.seed, o.unit.format, 6);
+      const CosimReport r = run_cosim(stream, o);
+      expect_pass(r, o);
+      EXPECT_EQ(r.vertices, expected_vertices(stream));
+    }
+  }
+}
+
+// Triangles spread over the whole coordinate range: control points and CPG intermediates leave
+// it, every saturating path of the RTL (tess_sat, the CPG's clamps) runs, and both sides must
+// still agree bit for bit, flags included. Saturated patches are outside the error bound's
+// premise, so the reference check counts them instead of comparing them.
+TEST(CosimSaturation, ClampedPatchesAgreeBitForBit) {
+  for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+    for (const int n : {1, 3}) {
+      CosimOptions o = options(n, 0.0, 1, 5);
+      o.unit.normals = mode;
+      const auto stream = random_triangles(120, o.seed, o.unit.format, 3, 0.1, 30.0);
+      const CosimReport r = run_cosim(stream, o);
+      expect_pass(r, o);
+      EXPECT_GT(r.reference.saturated, 0u) << "the stream must saturate";
+      EXPECT_LT(r.reference.saturated, r.vertices) << "and leave some patches in range";
+    }
+  }
+}
+
 TEST(CosimConfig, MismatchedConfigurationIsRejected) {
   CosimOptions o = options(2, 0.0, 1, 1);
   o.variant = "n3";  // the build has N = 3, the configuration N = 2
