@@ -235,7 +235,7 @@ constexpr std::array<NormalMode, 3> kModes{NormalMode::Quadratic, NormalMode::Re
 
 TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   const std::vector<std::string> names = rtl::rtl_variants();
-  EXPECT_EQ(names, (std::vector<std::string>{"n1", "n2", "n3", "n4", "n2_verif", "n2_bug1", "n2_bug2"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"n1", "n2", "n3", "n4", "n2_verif", "n3_lat3", "n2_bug1", "n2_bug2"}));
   EXPECT_THROW(rtl::make_rtl_unit("n9"), std::invalid_argument);
   auto unit = rtl::make_rtl_unit("n3");
   EXPECT_EQ(unit->int_blocks(), 3);
@@ -243,6 +243,11 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   EXPECT_EQ(unit->int_latency(), 1);
   EXPECT_EQ(unit->format(), kFormat);
   EXPECT_THROW(unit->set_mode(NormalMode::Derivative), std::invalid_argument);
+  // The parameters of a variant away from the defaults reach the configuration.
+  auto lat3 = rtl::make_rtl_unit("n3_lat3");
+  EXPECT_EQ(lat3->int_blocks(), 3);
+  EXPECT_EQ(lat3->contexts(), 6);
+  EXPECT_EQ(lat3->int_latency(), 3);
 }
 
 TEST(RtlSmoke, ConfigurationCheckNamesTheFirstDifference) {
