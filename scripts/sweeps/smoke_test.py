@@ -11,6 +11,7 @@ lost cache entry is recomputed alone; two shards merged give the same rows.
 import argparse
 import csv
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -138,6 +139,24 @@ def main():
         merged = [(r["key"], r["cycles"]) for r in read_csv(tmp / "merged.csv")]
         if merged != [(r["key"], r["cycles"]) for r in read_csv(out)]:
             fail("merged shards differ from the unsharded run")
+
+        # A Slurm job array of 3 shards, its tasks run here as Slurm would (one environment
+        # variable each) into a fresh cache, then its merge step: the same rows as the plain run.
+        script = tmp / "sweep.sbatch"
+        subprocess.run([sys.executable, str(SWEEP), str(SPEC), "-o", str(tmp / "slurm.csv"), "--cache",
+                        str(tmp / "slurm-cache"), "--tessim", tessim, "--slurm", str(script), "--slurm-tasks", "3"],
+                       check=True, capture_output=True)
+        text = script.read_text()
+        if "#SBATCH --array=1-3" not in text or "--shard \"$SLURM_ARRAY_TASK_ID/3\"" not in text:
+            fail("the Slurm script does not map array tasks onto shards:\n" + text)
+        for task in (1, 2, 3):
+            env = dict(os.environ, SLURM_ARRAY_TASK_ID=str(task), SLURM_CPUS_PER_TASK="1")
+            subprocess.run(["bash", str(script)], check=True, capture_output=True, env=env)
+        subprocess.run(["bash", str(script) + ".merge.sh"], check=True, capture_output=True)
+        columns = ("key", "point", "cycles", "vertices_out")
+        slurm = [tuple(r[c] for c in columns) for r in read_csv(tmp / "slurm.csv")]
+        if slurm != [tuple(r[c] for c in columns) for r in read_csv(out)]:
+            fail("the Slurm job array's merged rows differ from the plain run")
     print("sweep_smoke: OK")
 
 

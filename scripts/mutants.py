@@ -1,0 +1,200 @@
+#!/usr/bin/python3
+"""Mutation campaign: proves that the lock-step co-simulation catches real bugs.
+
+Each mutant of scripts/mutants/mutants.json is one plausible single-point bug in the RTL (or in
+the cycle model). The script applies it to a private copy of the repository (rtl/ itself is never
+touched, so the recorded Yosys costs stay valid), rebuilds `tessim` there with the RTL builds the
+stimulus needs, and runs the stimulus until one run fails. It prints a table: mutant, caught by
+(outputs / counters / hang / reference), the stimulus that caught it, the first divergent cycle
+and the seconds spent. It fails if a mutant not declared equivalent survives, if a declared
+equivalent one is caught (its argument is wrong), or if the unmutated copy fails any stimulus.
+
+    /usr/bin/python3 scripts/mutants.py [--work DIR] [--only ID,ID] [--markdown OUT.md]
+
+The work directory (default build/mutants) keeps the copy and its build between runs; a mutant
+then costs one Verilator run of the changed model and the stimulus (about 1-3 minutes).
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RTL_BUILDS = "n1;n3_lat3"
+N3 = ["--variant", "n3_lat3", "--int", "3", "--int-latency", "3", "--contexts", "6"]
+WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
+# Stimulus, in order; a mutant is run until the first failure. Together: every normal mode,
+# N = 1 and N = 3, INT latency 3, no / constant / random backpressure, degenerate triangles, a
+# real mesh, and saturation.
+STIMULUS = [
+    ("random quadratic N=3 K=1", ["--random", "60", "--random-max-L", "6", "--gpe-cycles", "1"] + N3),
+    ("random linear N=3 stall", ["--random", "60", "--random-max-L", "6", "--normals", "linear", "--stall", "0.3",
+                                 "--gpe-cycles", "2"] + N3),
+    ("random reflect N=3 K=8", ["--random", "40", "--random-max-L", "5", "--normals", "reflect"] + N3),
+    ("saturating quadratic N=3", ["--random", "120", "--random-max-L", "3", "--random-extent", "30",
+                                  "--gpe-cycles", "1"] + N3),
+    ("saturating reflect N=1", ["--random", "120", "--random-max-L", "3", "--random-extent", "30", "--normals",
+                                "reflect", "--gpe-cycles", "1", "--variant", "n1", "--int", "1"]),
+    ("Wuson L=3 quadratic N=3", [WUSON, "-L", "3"] + N3),
+    ("random linear N=1 K=1", ["--random", "40", "--random-max-L", "6", "--normals", "linear", "--gpe-cycles", "1",
+                               "--variant", "n1", "--int", "1"]),
+]
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, **kw)
+
+
+def copy_tree(dst):
+    files = run(["git", "ls-files"], cwd=ROOT).stdout.split()
+    for f in files:
+        src = os.path.join(ROOT, f)
+        out = os.path.join(dst, f)
+        if not os.path.isfile(src):
+            continue
+        os.makedirs(os.path.dirname(out), exist_ok=True)
+        if not os.path.exists(out) or open(src, "rb").read() != open(out, "rb").read():
+            shutil.copy2(src, out)
+
+
+def build(src, bld, log):
+    if not os.path.exists(os.path.join(bld, "CMakeCache.txt")):
+        args = ["cmake", "-S", src, "-B", bld, "-DCMAKE_BUILD_TYPE=Release", "-DTESSIM_BUILD_TESTS=OFF",
+                "-DTESSIM_BUILD_BENCH=OFF", "-DTESSIM_RTL_VARIANTS=" + RTL_BUILDS]
+        if shutil.which("ccache"):
+            args.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
+        r = run(args)
+        log.write(r.stdout)
+        if r.returncode:
+            return False
+    r = run(["cmake", "--build", bld, "-j2", "--target", "tessim"])
+    log.write(r.stdout)
+    return r.returncode == 0
+
+
+def classify(output):
+    """caught-by and first divergent cycle of a failing `tessim cosim` report."""
+    m = re.search(r"first divergence at cycle (\d+) in (\S+)", output)
+    if m:
+        field = m.group(2)
+        if field == "progress":
+            return "hang", int(m.group(1))
+        if field.startswith("counters") or field.startswith("perf"):
+            return "counters", int(m.group(1))
+        return "outputs (" + field + ")", int(m.group(1))
+    if "counters: DIFFER" in output:
+        return "counters (end of run)", None
+    if "beyond bound" in output:
+        return "reference", None
+    if "Assertion" in output or "%Error" in output:
+        return "assertion", None
+    return "run failed", None
+
+
+def apply(src, mutant):
+    path = os.path.join(src, mutant["file"])
+    text = open(path).read()
+    for edit in [{"find": mutant["find"], "replace": mutant["replace"]}] + mutant.get("also", []):
+        count = text.count(edit["find"])
+        if count != 1:
+            raise SystemExit("mutants: %s: expected the text once in %s, found it %d times: %s"
+                             % (mutant["id"], mutant["file"], count, edit["find"]))
+        text = text.replace(edit["find"], edit["replace"])
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def restore(src, mutant):
+    shutil.copy2(os.path.join(ROOT, mutant["file"]), os.path.join(src, mutant["file"]))
+    os.utime(os.path.join(src, mutant["file"]))  # newer than the mutant's build: rebuild
+
+
+def stimulate(tessim, log, stop_at_first=True):
+    """Runs the stimulus; returns (index, output) of the first failure or (None, None)."""
+    for i, (name, args) in enumerate(STIMULUS):
+        r = run([tessim, "cosim"] + args, timeout=1800)
+        log.write("$ tessim cosim %s\n%s\n" % (" ".join(args), r.stdout))
+        if r.returncode != 0:
+            return i, r.stdout
+    return None, None
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "mutants"), help="work directory")
+    ap.add_argument("--only", default="", help="comma-separated mutant ids")
+    ap.add_argument("--markdown", default="", help="also write the table as Markdown to this file")
+    args = ap.parse_args()
+
+    table = json.load(open(os.path.join(ROOT, "scripts", "mutants", "mutants.json")))["mutants"]
+    if args.only:
+        wanted = set(args.only.split(","))
+        unknown = wanted - {m["id"] for m in table}
+        if unknown:
+            raise SystemExit("mutants: unknown mutant(s): " + ", ".join(sorted(unknown)))
+        table = [m for m in table if m["id"] in wanted]
+    src, bld = os.path.join(args.work, "src"), os.path.join(args.work, "build")
+    os.makedirs(src, exist_ok=True)
+    log = open(os.path.join(args.work, "mutants.log"), "w")
+    copy_tree(src)
+    tessim = os.path.join(bld, "bin", "tessim")
+
+    t0 = time.time()
+    if not build(src, bld, log):
+        raise SystemExit("mutants: the unmutated copy does not build (see %s)" % log.name)
+    failed, _ = stimulate(tessim, log)
+    if failed is not None:
+        raise SystemExit("mutants: the unmutated copy fails '%s' (see %s)" % (STIMULUS[failed][0], log.name))
+    print("unmutated: builds and passes all %d stimuli (%.0f s)" % (len(STIMULUS), time.time() - t0), flush=True)
+
+    rows, problems = [], []
+    for m in table:
+        t = time.time()
+        apply(src, m)
+        try:
+            if not build(src, bld, log):
+                caught, stim, cycle = "build failed", "-", None
+            else:
+                idx, out = stimulate(tessim, log)
+                if idx is None:
+                    caught, stim, cycle = "SURVIVED", "-", None
+                else:
+                    caught, cycle = classify(out)
+                    stim = STIMULUS[idx][0]
+        finally:
+            restore(src, m)
+        seconds = time.time() - t
+        equivalent = m.get("equivalent")
+        if caught == "SURVIVED" and not equivalent:
+            problems.append("%s survived" % m["id"])
+        if caught != "SURVIVED" and equivalent:
+            problems.append("%s is declared equivalent but was caught (%s)" % (m["id"], caught))
+        verdict = "equivalent (argued)" if equivalent and caught == "SURVIVED" else caught
+        rows.append((m["id"], m["block"], m["what"], verdict, stim, "-" if cycle is None else str(cycle),
+                     "%.0f" % seconds))
+        print("%-22s %-26s %-28s %-8s %5s s" % (m["id"], verdict[:26], stim[:28], rows[-1][5], rows[-1][6]),
+              flush=True)
+
+    header = ("mutant", "block", "bug", "caught by", "stimulus", "first divergent cycle", "seconds")
+    md = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    md += ["| " + " | ".join(r) + " |" for r in rows]
+    caught = sum(1 for r in rows if r[3] not in ("SURVIVED", "equivalent (argued)"))
+    summary = "%d mutants: %d caught, %d argued equivalent, %d survived; %.0f s" % (
+        len(rows), caught, sum(1 for r in rows if r[3] == "equivalent (argued)"),
+        sum(1 for r in rows if r[3] == "SURVIVED"), time.time() - t0)
+    print("\n" + "\n".join(md) + "\n\n" + summary)
+    if args.markdown:
+        with open(args.markdown, "w") as f:
+            f.write("\n".join(md) + "\n\n" + summary + "\n")
+    if problems:
+        print("mutants: FAIL: " + "; ".join(problems), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
