@@ -18,6 +18,7 @@ PACKAGES=(
   verilator                     # RTL simulation (lock-step co-simulation)
   yosys                         # synthesis for hardware cost
   python3-matplotlib python3-numpy  # plots (run with /usr/bin/python3)
+  python3-distributed           # sweep.py --scheduler: points on a Dask cluster
   zlib1g-dev                    # FST waveforms
   git                           # scripts/costs.py records the commit its RTL was taken from
   strace                        # scripts/check_packages.py: files the build and tests touch

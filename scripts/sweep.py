@@ -53,7 +53,6 @@ killed, or when every point was rejected (a misspelt key); 2 for a bad spec or c
 """
 
 import argparse
-import shlex
 import concurrent.futures
 import csv
 import hashlib
@@ -61,6 +60,7 @@ import itertools
 import json
 import math
 import os
+import shlex
 import shutil
 import signal
 import subprocess
@@ -200,6 +200,43 @@ def point_key(params, mesh_sha, tessim_sha):
 
 
 # --------------------------------------------------------------------------- running one point
+
+def remote_point(tessim, params, key):
+    """One point on a Dask worker: its own Runner and scratch directory (the worker's tessim
+    process is the same binary, so the record is the one a local run makes)."""
+    workdir = tempfile.mkdtemp(prefix="tessim-sweep-worker-")
+    try:
+        return Runner(Path(tessim), workdir).point(params, key)
+    finally:
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+class DaskPool:
+    """The sweep's executor on a Dask distributed scheduler (python3-distributed)."""
+
+    def __init__(self, address, tessim):
+        try:
+            import distributed
+        except ImportError:
+            raise SpecError("--scheduler needs Dask distributed (Debian: python3-distributed)")
+        self.distributed = distributed
+        try:
+            self.client = distributed.Client(address, timeout="10s")
+        except OSError as e:
+            raise SpecError(f"--scheduler {address}: {e}")
+        self.tessim = str(tessim)
+
+    def submit(self, params, key):
+        return self.client.submit(remote_point, self.tessim, params, key, key=f"tessim-point-{key}", pure=False)
+
+    def as_completed(self, futures):
+        return self.distributed.as_completed(list(futures))
+
+    def shutdown(self, wait=True, cancel_futures=False):
+        if self.client is not None:  # closing the client releases (and so cancels) its futures
+            self.client.close()
+            self.client = None
+
 
 class Runner:
     """Runs points; tracks child processes so an interrupt can end them."""
@@ -469,6 +506,9 @@ def cmd_sweep(argv):
     ap.add_argument("--shard", help="i/n: run only every n-th point starting at the i-th (1-based)")
     ap.add_argument("--cache", help="cache directory (default: OUTPUT.cache)")
     ap.add_argument("--tessim", default=str(DEFAULT_TESSIM), help="tessim binary (default: build/bin/tessim)")
+    ap.add_argument("--scheduler", metavar="ADDRESS",
+                    help="run the points on a Dask distributed cluster (e.g. tcp://host:8786); its workers "
+                         "must see the same tessim binary, meshes and cache paths (a shared file system)")
     ap.add_argument("--slurm", metavar="SCRIPT",
                     help="write a Slurm job-array script (one task per shard) and its merge step "
                          "SCRIPT.merge.sh instead of running the points")
@@ -491,6 +531,7 @@ def cmd_sweep(argv):
         if not os.access(tessim, os.X_OK):
             raise SpecError(f"tessim binary '{tessim}' not found (build it, or give --tessim)")
         sch = schema(tessim)
+        dask_pool = DaskPool(args.scheduler, tessim) if args.scheduler else None
     except SpecError as e:
         print(f"sweep.py: error: {e}", file=sys.stderr)
         return 2
@@ -528,7 +569,10 @@ def cmd_sweep(argv):
         progress = Progress(len(keyed), len(keyed) - len(unique_todo), sum(weights.values()))
 
         crashed = []
-        pool = concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs)
+        if dask_pool:
+            pool = dask_pool
+        else:
+            pool = concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs)
         interrupted = False
 
         def on_term(signum, frame):
@@ -536,8 +580,11 @@ def cmd_sweep(argv):
 
         old_term = signal.signal(signal.SIGTERM, on_term)
         try:
-            futures = {pool.submit(runner.point, p, key): (i, p, g, key) for i, p, g, key in unique_todo}
-            for fut in concurrent.futures.as_completed(futures):
+            if args.scheduler:
+                futures = {pool.submit(p, key): (i, p, g, key) for i, p, g, key in unique_todo}
+            else:
+                futures = {pool.submit(runner.point, p, key): (i, p, g, key) for i, p, g, key in unique_todo}
+            for fut in pool.as_completed(futures) if args.scheduler else concurrent.futures.as_completed(futures):
                 i, p, g, key = futures[fut]
                 try:
                     record = fut.result()

@@ -5,7 +5,8 @@ Checks, independently of sweep.py's own code: 4 rows with status ok; every stati
 direct `tessim sim --stats` run of the same point is a column with the same value; every
 configuration key is a parameter column; the error columns of the point that asks for them are
 within the documented bound; a rerun takes everything from the cache and writes the same CSV; a
-lost cache entry is recomputed alone; two shards merged give the same rows.
+lost cache entry is recomputed alone; two shards merged, a Slurm job array run task by task and
+a Dask cluster of two worker processes give the same rows as the plain run.
 """
 
 import argparse
@@ -157,6 +158,23 @@ def main():
         slurm = [tuple(r[c] for c in columns) for r in read_csv(tmp / "slurm.csv")]
         if slurm != [tuple(r[c] for c in columns) for r in read_csv(out)]:
             fail("the Slurm job array's merged rows differ from the plain run")
+
+        # A Dask cluster of two worker processes (as on other machines sharing the file system):
+        # the same rows as the plain run.
+        from distributed import LocalCluster
+        with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+            subprocess.run([sys.executable, str(SWEEP), str(SPEC), "-o", str(tmp / "dask.csv"), "--cache",
+                            str(tmp / "dask-cache"), "--tessim", tessim, "--scheduler", cluster.scheduler_address],
+                           check=True, capture_output=True)
+        dask = [tuple(r[c] for c in columns) for r in read_csv(tmp / "dask.csv")]
+        if dask != [tuple(r[c] for c in columns) for r in read_csv(out)]:
+            fail("the Dask cluster's rows differ from the plain run")
+        if len(list((tmp / "dask-cache").glob("*/*.json"))) != 4:
+            fail("the Dask run did not compute and cache all 4 points")
+        bad = subprocess.run([sys.executable, str(SWEEP), str(SPEC), "-o", str(tmp / "x.csv"), "--tessim", tessim,
+                              "--scheduler", "tcp://127.0.0.1:9"], capture_output=True, text=True)
+        if bad.returncode != 2 or "--scheduler tcp://127.0.0.1:9" not in bad.stderr:
+            fail(f"an unreachable scheduler is not a clear error: {bad.returncode} {bad.stderr}")
     print("sweep_smoke: OK")
 
 
