@@ -98,7 +98,8 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   opts.variant = variant;
   opts.wave = a.wave;
   opts.wave_window = a.wave_window;
-  int failures = 0;
+  int failures = 0, run = 0;
+  std::uint64_t vertices = 0, cycles = 0;
   for (int s = 0; s < a.seeds; ++s) {
     opts.seed = cfg.seed + static_cast<std::uint64_t>(s);
     opts.unit.seed = opts.seed;
@@ -107,11 +108,18 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     std::cout << "stream: " << source << "\n";
     const cosim::CosimReport rep = cosim::run_cosim(stream, opts);
     std::cout << cosim::format_report(rep, opts) << std::flush;
+    ++run;
+    vertices += rep.vertices;
+    cycles += rep.cycles;
     if (!rep.passed) {
       ++failures;
       break;  // the first failing seed is the one to debug
     }
   }
+  if (a.seeds > 1)
+    std::cout << "seeds: " << run << " of " << a.seeds << " run, " << run - failures << " passed, " << failures
+              << " failed" << (failures ? " (stopped at the first failure)" : "") << "; " << vertices
+              << " vertices, " << cycles << " cycles\n";
   return failures == 0 ? 0 : 1;
 }
 

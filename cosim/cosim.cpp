@@ -226,8 +226,11 @@ std::string format_report(const CosimReport& r, const CosimOptions& o) {
     os << "  vs float reference: max position error " << e.position_max << " of the diagonal (rms "
        << e.position_rms << "), max normal angle " << e.normal_angle_max * 180.0 / M_PI << " deg (rms "
        << e.normal_angle_rms * 180.0 / M_PI << ")";
+    // After a divergence the run stopped early: say how far the check went, not that all is well.
     os << (r.reference.beyond_bound ? ", " + std::to_string(r.reference.beyond_bound) + " beyond bound: " + r.reference.worst
-                                    : ", all within the derived bound")
+           : r.divergence ? ", the " + std::to_string(e.vertices) + (e.vertices == 1 ? " vertex" : " vertices") +
+                                " before the divergence within the derived bound"
+                          : ", all within the derived bound")
        << "\n";
     if (r.reference.saturated) os << "  saturated: " << r.reference.saturated << " vertices of clamped patches (outside the bound's premise, not compared)\n";
   }

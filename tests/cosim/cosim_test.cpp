@@ -235,6 +235,23 @@ TEST(CosimCli, ConfigFileIntBlocksSelectTheBuild) {
   }
 }
 
+// Several seeds end with a tally; a failing run does not claim that everything was within the
+// bound (it stopped at the divergence), and the tally says where it stopped.
+TEST(CosimCli, SeedsEndWithATallyAndAFailureIsNotCalledClean) {
+  tessim::testing::TempDir dir;
+  auto r = tessim::testing::run_tessim({"cosim", "--random", "6", "--random-max-L", "2", "--seeds", "2"}, dir.path());
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("seeds: 2 of 2 run, 2 passed, 0 failed; "), std::string::npos) << r.out;
+  r = tessim::testing::run_tessim(
+      {"cosim", "--random", "12", "--random-max-L", "4", "--variant", "n2_bug1", "--seeds", "3", "--gpe-cycles", "1"},
+      dir.path());
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_EQ(r.out.find("all within the derived bound"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("before the divergence within the derived bound"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("seeds: 1 of 3 run, 0 passed, 1 failed (stopped at the first failure)"), std::string::npos)
+      << r.out;
+}
+
 TEST(CosimCli, IntBlocksWithoutAnRtlBuildIsAnInputError) {
   tessim::testing::TempDir dir;
   const auto r = tessim::testing::run_tessim({"cosim", "--random", "4", "--int", "5"}, dir.path());
