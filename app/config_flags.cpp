@@ -35,24 +35,7 @@ nlohmann::json read_config_file(const std::string& file) {
   if (!in) throw InputError(file, "file", "cannot be opened for reading");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(file, "file", "read error");
-  // The key being read, for messages: the parser reports the key event before its value.
-  std::string key;
-  const nlohmann::json::parser_callback_t track = [&key](int depth, nlohmann::json::parse_event_t event,
-                                                         nlohmann::json& parsed) {
-    if (event == nlohmann::json::parse_event_t::key && depth == 1) key = parsed.get<std::string>();
-    return true;
-  };
-  try {
-    return nlohmann::json::parse(text, track);
-  } catch (const nlohmann::json::out_of_range& e) {
-    // nlohmann's text ("[json.exception.out_of_range.406] number overflow parsing '1e400'")
-    // without its prefix.
-    std::string reason = e.what();
-    if (const std::size_t close = reason.find("] "); close != std::string::npos) reason = reason.substr(close + 2);
-    throw InputError(file, key.empty() ? std::string("JSON") : key, reason + " (beyond the range of a double)");
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(file, "JSON", e.what());
-  }
+  return sim::parse_config_text(text, file);
 }
 
 }  // namespace

@@ -171,6 +171,8 @@ def main():
         equivalent = m.get("equivalent")
         if caught == "SURVIVED" and not equivalent:
             problems.append("%s survived" % m["id"])
+        if caught == "build failed":  # not a bug the verification found: the mutant must be fixed
+            problems.append("%s does not build (see %s)" % (m["id"], log.name))
         if caught != "SURVIVED" and equivalent:
             problems.append("%s is declared equivalent but was caught (%s)" % (m["id"], caught))
         verdict = "equivalent (argued)" if equivalent and caught == "SURVIVED" else caught
@@ -182,7 +184,7 @@ def main():
     header = ("mutant", "block", "bug", "caught by", "stimulus", "first divergent cycle", "seconds")
     md = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     md += ["| " + " | ".join(r) + " |" for r in rows]
-    caught = sum(1 for r in rows if r[3] not in ("SURVIVED", "equivalent (argued)"))
+    caught = sum(1 for r in rows if r[3] not in ("SURVIVED", "equivalent (argued)", "build failed"))
     summary = "%d mutants: %d caught, %d argued equivalent, %d survived; %.0f s" % (
         len(rows), caught, sum(1 for r in rows if r[3] == "equivalent (argued)"),
         sum(1 for r in rows if r[3] == "SURVIVED"), time.time() - t0)

@@ -89,19 +89,25 @@ void apply_json(UnitConfig& cfg, const nlohmann::json& j, const std::string& sou
   }
 }
 
-UnitConfig load_config(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "file", "cannot open");
-  nlohmann::json j;
+nlohmann::json parse_config_text(const std::string& text, const std::string& source) {
+  // The key being read, for messages: the parser reports the key event before its value.
+  std::string key;
+  const nlohmann::json::parser_callback_t track = [&key](int depth, nlohmann::json::parse_event_t event,
+                                                         nlohmann::json& parsed) {
+    if (event == nlohmann::json::parse_event_t::key && depth == 1) key = parsed.get<std::string>();
+    return true;
+  };
   try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path.string(), "JSON", e.what());
+    return nlohmann::json::parse(text, track);
+  } catch (const nlohmann::json::out_of_range& e) {
+    // nlohmann's text ("[json.exception.out_of_range.406] number overflow parsing '1e400'")
+    // without its prefix.
+    std::string reason = e.what();
+    if (const std::size_t close = reason.find("] "); close != std::string::npos) reason = reason.substr(close + 2);
+    throw InputError(source, key.empty() ? std::string("JSON") : key, reason + " (beyond the range of a double)");
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(source, "JSON", e.what());
   }
-  UnitConfig cfg;
-  apply_json(cfg, j, path.string());
-  cfg.validate(path.string());
-  return cfg;
 }
 
 nlohmann::json to_json(const UnitConfig& c) {

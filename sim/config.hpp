@@ -73,7 +73,9 @@ inline UnitConfig with_hardware(const HardwareConfig& hw, UnitConfig rest = {}) 
 // coord_int_bits, coord_frac_bits, bary_bits; enums as strings). Unknown keys, wrong types
 // and out-of-range values are InputErrors naming the file and the key.
 void apply_json(UnitConfig& cfg, const nlohmann::json& j, const std::string& source);
-UnitConfig load_config(const std::filesystem::path& path);  // defaults + file, validated
+// The JSON text of a configuration file; every failure (syntax, a number beyond double's range
+// such as 1e400) is an InputError naming `source` and, where known, the key.
+nlohmann::json parse_config_text(const std::string& text, const std::string& source);
 nlohmann::json to_json(const UnitConfig& cfg);
 
 std::string to_string(CpgMapping m);

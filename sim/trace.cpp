@@ -15,7 +15,7 @@ constexpr int kTidGpe = 1002;
 }  // namespace
 
 TraceWriter::TraceWriter(const std::filesystem::path& path, int int_blocks, std::uint64_t window_cycles)
-    : out_(path), int_blocks_(int_blocks), window_(window_cycles) {
+    : out_(path), window_(window_cycles) {
   out_.stream() << "{\"otherData\":{\"time_unit\":\"1 us = 1 cycle\"},"
                    "\"traceEvents\":[\n";
   char buf[160];

@@ -36,7 +36,6 @@ class TraceWriter : public CycleObserver {
   void event(const std::string& json);
 
   AtomicOutput out_;
-  int int_blocks_;
   std::uint64_t window_;
   std::uint64_t last_cycle_ = 0;  // one past the last recorded cycle
   bool first_event_ = true;
