@@ -1,14 +1,19 @@
 // tessim cosim: lock-step co-simulation of the Verilated RTL against the cycle model.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
 #include "model/mesh_io.hpp"
+#include "model/output_file.hpp"
 #include "model/pattern.hpp"
+#include "cosim/coverage.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "app/commands.hpp"
 #include "app/config_flags.hpp"
@@ -31,6 +36,8 @@ struct CosimArgs {
   std::string wave;
   int wave_window = 200;
   AdaptiveOptions adaptive;
+  std::string coverage;                 // functional coverage file (accumulated)
+  std::vector<std::uint64_t> reset_at;  // cycles of a mid-stream reset
 };
 
 std::string known_builds() {
@@ -93,8 +100,26 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     source = a.mesh + (adaptive ? " (" + adaptive->describe() + ", covered by the uniform pattern)" : "");
   }
 
+  // Functional coverage accumulates into the file across seeds and invocations; it is read
+  // (and checked) before the run, so a bad file stops the command before anything runs.
+  cosim::FunctionalCoverage coverage;
+  if (!a.coverage.empty() && std::filesystem::exists(a.coverage)) {
+    std::ifstream in(a.coverage);
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(a.coverage, "JSON", e.what());
+    }
+    coverage = cosim::FunctionalCoverage::from_json(j, a.coverage);
+  }
+  std::unique_ptr<AtomicOutput> coverage_out;
+  if (!a.coverage.empty()) coverage_out = std::make_unique<AtomicOutput>(a.coverage);
+
   cosim::CosimOptions opts;
   opts.unit = cfg;
+  opts.reset_at = a.reset_at;
+  if (coverage_out) opts.coverage = &coverage;
   opts.variant = variant;
   opts.wave = a.wave;
   opts.wave_window = a.wave_window;
@@ -115,6 +140,11 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
       ++failures;
       break;  // the first failing seed is the one to debug
     }
+  }
+  if (coverage_out) {
+    std::cout << coverage.summary();
+    coverage_out->stream() << coverage.to_json().dump(1) << "\n";
+    coverage_out->commit();
   }
   if (a.seeds > 1)
     std::cout << "seeds: " << run << " of " << a.seeds << " run, " << run - failures << " passed, " << failures
@@ -146,6 +176,11 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("--variant", args->variant, "RTL build to use (see docs/rtl.md)");
   add_adaptive_options(*cmd, args->adaptive, "cosim");
   cmd->add_flag("--verif", args->verif, "Use the verification build (X randomised)");
+  cmd->add_option("--coverage", args->coverage,
+                  "Sample functional coverage into this JSON file, adding to what it holds (docs/verification.md, "
+                  "Coverage)");
+  cmd->add_option("--reset-at", args->reset_at, "Reset both implementations at these cycles (comma-separated)")
+      ->delimiter(',');
   cmd->add_option("--wave", args->wave, "On divergence, write an FST waveform of the window before it");
   cmd->add_option("--wave-window", args->wave_window, "Cycles of waveform before the divergence (1..10000000)")
       ->transform(number_check<int>("command line", "--wave-window", "1..10000000"));

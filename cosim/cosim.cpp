@@ -56,6 +56,8 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   };
   std::unique_ptr<sim::ArithmeticCheck> reference;
   if (opts.check_reference && checking) reference = make_reference();
+  FunctionalCoverage* coverage = checking ? opts.coverage : nullptr;
+  if (coverage) coverage->declare(opts.unit);
 
   std::deque<std::string> recent;
   auto note = [&](std::string s) {
@@ -89,6 +91,7 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
     if (next_reset < resets.size() && cycle == resets[next_reset]) {
       // Mid-stream reset of both implementations: the stream starts again from the beginning.
       ++next_reset;
+      if (coverage) coverage->sample_reset(model.unit());
       expected.reset();
       actual.reset();
       tb.reset();
@@ -111,6 +114,9 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
 
     // 2. The environment: source and geometry engine, driven by the (agreeing) outputs.
     const sim::UnitInputs& in = tb.inputs(expected);
+    const bool vtx_valid = expected.vtx_valid();
+    const sim::VertexFx vtx_front = vtx_valid ? expected.vtx() : sim::VertexFx{};
+    if (coverage && tb.pushed()) coverage->sample_triangle(in.tri, opts.unit.normals);
     if (tb.pushed()) {
       note("cycle " + std::to_string(cycle) + ": triangle " + std::to_string(in.tri.id) + " in (L=" +
            std::to_string(in.tri.L) + ")");
@@ -121,12 +127,14 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
       last_patch = v.id;
       note("cycle " + std::to_string(cycle) + ": vertex out " + sim::describe(v));
       if (reference && v.id < stream.size()) reference->check(v);
+      if (coverage) coverage->sample_vertex(v);
       progress.transfer(cycle);
     }
 
     // 3. The clock edge, for both.
     expected.tick(in);
     actual.tick(in);
+    if (coverage) coverage->sample_cycle(in, vtx_valid, vtx_front, tb.gpe_cycle(), model.unit());
 
     if (checking && tb.accepted() == run.expected_vertices) {
       ++cycle;

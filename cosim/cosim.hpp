@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cosim/coverage.hpp"
 #include "sim/config.hpp"
 #include "sim/cpg.hpp"
 #include "sim/gpe.hpp"
@@ -30,6 +31,7 @@ struct CosimOptions {
   std::vector<std::uint64_t> reset_at;  // cycles at which both are reset mid-stream
   std::uint64_t hang_cycles = 100000;   // cycles without any transfer that count as a hang
   bool check_reference = true;     // compare each vertex with the float reference
+  FunctionalCoverage* coverage = nullptr;  // sampled every cycle when set (cosim/coverage.hpp)
 };
 
 struct Divergence {

@@ -3,6 +3,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
 #include "model/mesh_io.hpp"
@@ -203,6 +206,61 @@ TEST(CosimSaturation, ClampedPatchesAgreeBitForBit) {
       EXPECT_LT(r.reference.saturated, r.vertices) << "and leave some patches in range";
     }
   }
+}
+
+// Functional coverage: every cycle lands in exactly one bin of each per-cycle group, resets are
+// binned by the CPG's state, and what the stream cannot reach stays at zero.
+TEST(CosimCoverage, BinsCountCyclesAndEvents) {
+  CosimOptions o = options(2, 0.0, 1, 3);
+  FunctionalCoverage cov;
+  o.coverage = &cov;
+  o.reset_at = {1, 300};
+  const auto stream = random_triangles(10, 3, o.unit.format, 3, 0.0);
+  const CosimReport r = run_cosim(stream, o);
+  expect_pass(r, o);
+  const nlohmann::json bins = cov.to_json()["bins"];
+  std::uint64_t issued = 0, classes = 0;
+  for (int k = 0; k <= 2; ++k) issued += bins["te.ops_issued/" + std::to_string(k)].get<std::uint64_t>();
+  for (const auto& [bin, n] : bins.items())
+    if (bin.rfind("te.class/", 0) == 0) classes += n.get<std::uint64_t>();
+  EXPECT_EQ(issued, r.cycles);
+  EXPECT_EQ(classes, r.cycles);
+  EXPECT_EQ(bins["reset.in_cpg/idle"], 1u);     // cycle 0: nothing in the TRI FIFO yet
+  EXPECT_EQ(bins["reset.in_cpg/compute"], 1u);  // cycle 299: mid-triangle
+  EXPECT_GT(bins["factor.quadratic/L=3"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(bins["factor.quadratic/L=4"], 0u);  // the stream's factors are 1..3
+  EXPECT_EQ(bins["patch/saturated"], 0u);
+  EXPECT_FALSE(bins.contains("cpg.action/wait_gpe"));  // a dedicated CPG never waits for the GPE
+  EXPECT_LT(cov.covered(), cov.bins());
+}
+
+// On the command line the file accumulates across invocations; a file that is not coverage is
+// bad input, reported before anything runs.
+TEST(CosimCli, CoverageAccumulatesInItsFile) {
+  tessim::testing::TempDir dir;
+  const std::string file = (dir.path() / "cov.json").string();
+  const std::vector<std::string> cmd{"cosim", "--random", "4", "--random-max-L", "2", "--coverage", file};
+  auto r = tessim::testing::run_tessim(cmd, dir.path());
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("functional coverage: "), std::string::npos) << r.out;
+  const auto cycles = [&] {
+    std::ifstream in(file);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    std::uint64_t n = 0;
+    for (const auto& [bin, hits] : j["bins"].items())
+      if (bin.rfind("te.ops_issued/", 0) == 0) n += hits.get<std::uint64_t>();
+    return n;
+  };
+  const std::uint64_t once = cycles();
+  EXPECT_GT(once, 0u);
+  r = tessim::testing::run_tessim(cmd, dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(cycles(), 2 * once);
+  const auto bad = dir.write("bad.json", R"({"bins": {"te.class/busy": -3}})");
+  r = tessim::testing::run_tessim({"cosim", "--random", "4", "--coverage", bad.string()}, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(bad.string() + ": bins.te.class/busy: "), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
 }
 
 TEST(CosimConfig, MismatchedConfigurationIsRejected) {
