@@ -41,8 +41,13 @@ status=0
 printf "%-12s %12s %12s %10s %s\n" target executions "exec/s" seconds findings
 for t in "${targets[@]}"; do
   log="build-fuzz/$t.log"
+  extra=()
+  # Assimp leaks the partial scene of some files it rejects (tests/support/lsan.supp); libFuzzer's
+  # per-input malloc/free balance then trips and its LeakSanitizer pass blames its own corpus
+  # bookkeeping. Leaks of mesh loading are checked by the sanitizer suite instead.
+  [ "$t" = fuzz_mesh ] && extra=(-detect_leaks=0)
   if "build-fuzz/bin/$t" "$corpus/$t" -max_total_time="$seconds" -print_final_stats=1 -timeout=20 -rss_limit_mb=2048 \
-       -artifact_prefix="$findings/$t-" >"$log" 2>&1; then
+       "${extra[@]}" -artifact_prefix="$findings/$t-" >"$log" 2>&1; then
     found=none
   else
     found="see $log and $findings/"

@@ -3,9 +3,13 @@
 // include the generated headers need this file; everything else uses rtl_unit.hpp.
 #pragma once
 
+#include <unistd.h>
+
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -13,6 +17,9 @@
 
 #include <verilated.h>
 #include <verilated_fst_c.h>
+#ifdef TESSIM_RTL_COVERAGE
+#include <verilated_cov.h>
+#endif
 
 #include "rtl/verilated/rtl_unit.hpp"
 
@@ -121,6 +128,14 @@ class VerilatedUnit final : public RtlUnit {
     Verilated::threadContextp(context_.get());
     close_wave();
     model_->final();
+#ifdef TESSIM_RTL_COVERAGE
+    // Coverage builds: this unit's counts, one file per unit (verilator_coverage merges them).
+    if (const char* base = std::getenv("TESSIM_RTL_COVERAGE_FILE")) {
+      static int written = 0;
+      const std::string path = std::string(base) + "." + std::to_string(getpid()) + "." + std::to_string(written++);
+      context_->coveragep()->write(path.c_str());
+    }
+#endif
   }
 
   void reset() override {
