@@ -75,6 +75,9 @@ void check_ply(const std::string& file, const std::string& data) {
     }
     if (*keyword == "comment" || *keyword == "obj_info") continue;
     if (*keyword == "format") {
+      // Assimp's reader corrupts its heap on some headers that declare things twice (found by
+      // fuzz/fuzz_mesh): a second format line or element name is rejected here.
+      if (format) throw header_error("a second format line");
       const auto kind = tokens.next();
       if (kind == "ascii") format = PlyFormat::Ascii;
       else if (kind == "binary_little_endian") format = PlyFormat::BinaryLittle;
@@ -85,6 +88,8 @@ void check_ply(const std::string& file, const std::string& data) {
       const auto count_token = tokens.next();
       const auto count = count_token ? parse_unsigned(*count_token) : std::nullopt;
       if (!name || !count) throw header_error("expected 'element <name> <count>'");
+      for (const PlyElement& e : elements)
+        if (e.name == *name) throw header_error("element '" + e.name + "' declared twice");
       elements.push_back({std::string(*name), *count, {}});
     } else if (*keyword == "property") {
       if (elements.empty()) throw header_error("property before any element");

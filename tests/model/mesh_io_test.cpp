@@ -150,6 +150,17 @@ TEST(LoadMesh, RejectsMalformedFilesNamingFileElementAndReason) {
   EXPECT_TRUE(rejects(dir.write("cancel.obj", tri + "v 0 0 0\nvn 0 0 1\nvn 0 0 -1\nf 1//1 2//1 3//1\nf 4//2 3//2 2//2\n"),
                       {"cancel.obj", "vertex", "cancel out"}));
 
+  // PLY headers that declare things twice: Assimp 5.2's reader freed memory it did not allocate
+  // on the first of these (found by fuzz/fuzz_mesh: two headers run together), so they are
+  // rejected before it reads them.
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+  const std::string body = "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_TRUE(rejects(dir.write("two_headers.ply", header + "end_he\x04ply\n" + header + body),
+                      {"two_headers.ply", "PLY header line 11", "a second format line"}));
+  EXPECT_TRUE(rejects(dir.write("two_vertex_elements.ply", header + "element vertex 3\n" + body),
+                      {"two_vertex_elements.ply", "PLY header line 9", "element 'vertex' declared twice"}));
+
   // PLY: truncated binary, truncated header, out-of-range face, non-numbers, Inf.
   const std::string ply = square_binary_ply();
   EXPECT_TRUE(rejects(dir.write("truncated.ply", ply.substr(0, ply.size() - 7)),
