@@ -52,6 +52,9 @@ OPTIONAL_FILES = [
     (r"^/usr/lib/ssl/openssl\.cnf$", "OpenSSL reads its configuration file when openssl is installed"),
     (r"^/usr/lib/python3/dist-packages/[^/]+\.pth$", "Python's site module runs every .pth file installed"),
     (r"^/usr/lib/python3/dist-packages/_distutils_hack/", "imported by setuptools' .pth file, when installed"),
+    (r"^/usr/lib/python3/dist-packages/[^/]+\.(?:dist|egg)-info/entry_points\.txt$",
+     "importlib.metadata reads every installed distribution's entry points (Dask looks up its plugins)"),
+    (r"^/usr/lib/debug/", "symbolizers read separate debug information when it is installed"),
 ]
 OPTIONAL = re.compile("|".join(f"(?:{p})" for p, _ in OPTIONAL_FILES))
 

@@ -20,6 +20,7 @@ PACKAGES=(
   python3-matplotlib python3-numpy  # plots (run with /usr/bin/python3)
   python3-distributed           # sweep.py --scheduler: points on a Dask cluster
   clang libclang-rt-14-dev      # libFuzzer targets (fuzz/, scripts/fuzz.sh)
+  llvm lld                      # their toolchain: llvm-symbolizer for sanitizer reports, the LLVM binutils CMake picks
   zlib1g-dev                    # FST waveforms
   git                           # scripts/costs.py records the commit its RTL was taken from
   strace                        # scripts/check_packages.py: files the build and tests touch
