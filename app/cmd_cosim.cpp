@@ -46,8 +46,9 @@ std::string known_builds() {
   return known;
 }
 
-// The RTL build to run: --variant, else nN (nN_verif) for the configuration's int_blocks.
-// A build that does not exist is bad input, named with the builds that do (docs/rtl.md).
+// The RTL build to run: --variant, else the build (the VERIF build with --verif) that
+// implements the configuration's hardware. A build that does not exist is bad input, named
+// with the builds that do (docs/rtl.md).
 std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const sim::UnitConfig& cfg) {
   const std::vector<std::string> builds = rtl::rtl_variants();
   auto exists = [&](const std::string& v) { return std::find(builds.begin(), builds.end(), v) != builds.end(); };
@@ -57,17 +58,15 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
                        "no RTL build '" + a.variant + "'; the RTL builds are " + known_builds());
     return a.variant;
   }
-  const std::string v = "n" + std::to_string(cfg.int_blocks) + (a.verif ? "_verif" : "");
-  if (!exists(v)) {
-    const std::string source = flags.config_file().empty() || flags.overrides().contains("int_blocks")
-                                   ? "command line"
-                                   : flags.config_file();
-    throw InputError(source, "int_blocks",
-                     "no RTL build " + v + " for int_blocks " + std::to_string(cfg.int_blocks) +
-                         (a.verif ? " with --verif" : "") + "; the RTL builds are " + known_builds() +
-                         " (nN: N INT blocks; docs/rtl.md adds one)");
-  }
-  return v;
+  if (const std::optional<std::string> v = rtl::find_rtl_variant(cfg.hardware(), a.verif)) return *v;
+  const std::string source = flags.config_file().empty() || flags.overrides().contains("int_blocks")
+                                 ? "command line"
+                                 : flags.config_file();
+  throw InputError(source, "int_blocks",
+                   "no RTL build implements this hardware (int_blocks " + std::to_string(cfg.int_blocks) +
+                       ", cpg_lanes " + std::to_string(cfg.cpg.lanes) + ", cpg_digit_bits " +
+                       std::to_string(cfg.cpg.digit_bits) + (a.verif ? ", --verif" : "") +
+                       "); the RTL builds are " + known_builds() + " (docs/rtl.md adds one)");
 }
 
 int run(const CosimArgs& a, const ConfigFlags& flags) {

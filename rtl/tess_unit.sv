@@ -11,6 +11,8 @@ module tess_unit #(
   parameter int unsigned Contexts      = tess_pkg::Contexts,
   parameter int unsigned TriFifoDepth  = tess_pkg::TriFifoDepth,
   parameter int unsigned VtxFifoDepth  = tess_pkg::VtxFifoDepth,
+  parameter int unsigned CpgLanes      = tess_pkg::CpgLanes,
+  parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
   parameter int unsigned InjectBug     = tess_pkg::InjectBug,
   localparam int unsigned W            = 1 + CoordIntBits + CoordFracBits,
   localparam int unsigned CtrW         = tess_pkg::CounterBits
@@ -91,7 +93,12 @@ module tess_unit #(
   logic [FlagW-1:0]    cpg_flags;
   logic                cpg_busy, cpg_blocked, cpg_active;
 
-  tess_cpg #(.CoordIntBits(CoordIntBits), .CoordFracBits(CoordFracBits)) u_cpg (
+  tess_cpg #(
+    .CoordIntBits (CoordIntBits),
+    .CoordFracBits(CoordFracBits),
+    .CpgLanes     (CpgLanes),
+    .CpgDigitBits (CpgDigitBits)
+  ) u_cpg (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
     .mode_i     (mode_i),

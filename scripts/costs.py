@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Hardware cost of every RTL configuration in a sweep's results, joined to its rows.
 
-    costs.py RESULTS.csv [-o OUT.csv] [--where KEY=V[,V...] ...] [--cache DIR] [--no-xilinx] [--tessim PATH]
-             [--dry-run | --cached-only | --require-cached]
+    costs.py RESULTS.csv [-o OUT.csv] [--where KEY=V[,V...] ...]... [--compose-cpg] [--cache DIR]
+             [--no-xilinx] [--tessim PATH] [--dry-run | --cached-only | --require-cached]
 
 For each distinct RTL configuration among the rows (the parameters that `tessim schema` maps to a
 tess_unit parameter: int_blocks, int_latency, te_contexts, coord_int_bits, coord_frac_bits,
@@ -25,8 +25,16 @@ Synthesis takes minutes per configuration, so results are cached (default: docs/
 one JSON per configuration) under a SHA-256 of the configuration, the content of every RTL
 source, of synth.sh and the Yosys version: a changed RTL re-synthesizes, an unchanged one never.
 --where restricts the configurations costed (e.g. --where int_latency=1 te_contexts=4
-int_blocks=1,2,4; the key `grid` matches the rows of the named grids); rows outside it get no
-cost columns.
+int_blocks=1,2,4; the key `grid` matches the rows of the named grids); --where may be given
+several times, a row is costed when it matches any of them; rows outside get no cost columns.
+
+--compose-cpg costs a configuration whose CPG is not the sequential one (cpg_lanes, cpg_digit_bits
+away from their defaults) without synthesizing its whole unit: the unit with the sequential CPG and
+otherwise the same parameters is synthesized (or looked up), the CPG variant alone is synthesized
+(synth.sh --cpg-only), and the unit's figures become unit - sequential CPG + CPG variant (cells,
+flip-flops, transistors, LUT/FF/DSP/CARRY4 add; the depth is the larger of the two, since the CPG's
+results are registered before they leave it). Such rows have cost_composed = 1
+(docs/results/load-balancing.md says how close the composition is to a whole-unit synthesis).
 
 Writes OUT.csv (default: RESULTS.csv in place) and its JSON twin, like scripts/sweep.py.
 """
@@ -61,14 +69,18 @@ def parse_value(text):
     return {"true": True, "false": False}.get(text, text)
 
 
-def parse_where(items):
-    where = {}
-    for item in items or []:
-        if "=" not in item:
-            raise ValueError(f"--where '{item}': expected KEY=VALUE[,VALUE...]")
-        key, values = item.split("=", 1)
-        where[key] = {parse_value(v) for v in values.split(",")}
-    return where
+def parse_where(groups):
+    """One dict KEY -> set of values per --where group (a row matches any group)."""
+    parsed = []
+    for items in groups or [[]]:
+        where = {}
+        for item in items:
+            if "=" not in item:
+                raise ValueError(f"--where '{item}': expected KEY=VALUE[,VALUE...]")
+            key, values = item.split("=", 1)
+            where[key] = {parse_value(v) for v in values.split(",")}
+        parsed.append(where)
+    return parsed
 
 
 def rtl_config(row):
@@ -119,10 +131,46 @@ def yosys_version():
         raise SystemExit(f"costs.py: error: yosys not available: {e}")
 
 
-def cache_key(config, digest, yosys, xilinx):
+def cache_key(config, digest, yosys, xilinx, cpg_only=False):
     ident = {"schema": CACHE_SCHEMA, "params": dict(config), "sources_sha256": digest, "yosys": yosys,
              "xilinx": xilinx}
+    if cpg_only:
+        ident["blocks"] = "tess_cpg"
     return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
+
+
+# The CPG's own parameters, and the ones it shares with the unit (the coordinate format).
+CPG_PARAMS = ("CpgLanes", "CpgDigitBits")
+CPG_FORMAT_PARAMS = ("CoordIntBits", "CoordFracBits")
+
+
+def cpg_variant_of(config, defaults):
+    """(base, cpg) if `config` has a CPG variant away from the defaults: the same configuration with
+    the sequential CPG, and the parameters the CPG alone is synthesized with; else None."""
+    values = dict(config)
+    if all(values.get(p) == defaults.get(p) for p in CPG_PARAMS):
+        return None
+    base = tuple((n, defaults[n] if n in CPG_PARAMS else v) for n, v in config)
+    cpg = tuple((n, v) for n, v in config if n in CPG_PARAMS + CPG_FORMAT_PARAMS)
+    return base, cpg
+
+
+def compose(base, cpg_result, base_config):
+    """The unit of `base` with its CPG replaced by the variant of `cpg_result` (see --compose-cpg)."""
+    out = json.loads(json.dumps(base))
+    old, new = base["blocks"]["tess_cpg"], cpg_result["blocks"]["tess_cpg"]
+    unit = out["blocks"]["tess_unit"]
+    for k in ("cells", "flops", "transistors"):
+        unit[k] = unit[k] - old[k] + new[k]
+    unit["transistors_exact"] = unit.get("transistors_exact", True) and new.get("transistors_exact", True)
+    unit["depth"] = max(unit["depth"], new["depth"])
+    if unit.get("xilinx") and new.get("xilinx"):
+        for k in unit["xilinx"]:
+            unit["xilinx"][k] = unit["xilinx"][k] - old["xilinx"][k] + new["xilinx"][k]
+    out["blocks"]["tess_cpg"] = new
+    out["composed_from"] = {"unit": describe(base_config), "cpg": cpg_result.get("overrides", "")}
+    out["seconds"] = base.get("seconds", 0) + cpg_result.get("seconds", 0)
+    return out
 
 
 def provenance():
@@ -137,7 +185,7 @@ def provenance():
             "uncommitted_changes": bool(git("status", "--porcelain", "rtl", "scripts/synth.sh"))}
 
 
-def synthesize(synth, config, xilinx):
+def synthesize(synth, config, xilinx, cpg_only=False):
     with tempfile.TemporaryDirectory(prefix="tessim-costs-") as tmp:
         out = Path(tmp) / "costs.json"
         args = ["bash", str(synth)]
@@ -146,6 +194,8 @@ def synthesize(synth, config, xilinx):
         args += ["--json", str(out)]
         if not xilinx:
             args.append("--no-xilinx")
+        if cpg_only:
+            args.append("--cpg-only")
         proc = subprocess.run(args, capture_output=True, text=True)
         if proc.returncode != 0:
             raise RuntimeError(f"synth.sh {describe(config)}: exit status {proc.returncode}:\n{proc.stderr.strip()}")
@@ -169,6 +219,7 @@ def cost_columns(result, n_blocks):
             cols["cost_rest_transistors"] = (cols["cost_unit_transistors"] - cols["cost_cpg_transistors"]
                                              - cols["cost_int_all_transistors"])
     cols["cost_synth_seconds"] = result.get("seconds")
+    cols["cost_composed"] = 1 if "composed_from" in result else 0
     return cols
 
 
@@ -176,8 +227,11 @@ def main(argv):
     ap = argparse.ArgumentParser(prog="costs.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("results", help="results CSV of scripts/sweep.py (its JSON twin is read when present)")
     ap.add_argument("-o", "--output", help="output CSV (default: overwrite RESULTS)")
-    ap.add_argument("--where", nargs="*", metavar="KEY=V[,V...]",
-                    help="cost only the configurations of rows matching all of these")
+    ap.add_argument("--where", nargs="*", action="append", metavar="KEY=V[,V...]",
+                    help="cost only the configurations of rows matching all of these (repeat: any group)")
+    ap.add_argument("--compose-cpg", action="store_true",
+                    help="cost a CPG variant as the unit with the sequential CPG, minus that CPG, plus the variant "
+                         "synthesized alone")
     ap.add_argument("--cache", default=str(REPO / "docs" / "results" / "costs"), help="cache directory")
     ap.add_argument("--synth", default=str(REPO / "scripts" / "synth.sh"), help="synthesis script")
     ap.add_argument("--tessim", default=str(sweep.DEFAULT_TESSIM),
@@ -214,7 +268,7 @@ def main(argv):
         return row.get(key) in values
 
     def selected(row):
-        return row.get("status") == "ok" and all(matches(row, k, vals) for k, vals in where.items())
+        return row.get("status") == "ok" and any(all(matches(row, k, vals) for k, vals in w.items()) for w in where)
 
     configs = []
     for r in rows:
@@ -222,6 +276,19 @@ def main(argv):
             c = rtl_config(r)
             if c not in configs:
                 configs.append(c)
+
+    # --compose-cpg: a CPG variant needs the unit with the sequential CPG and the variant alone.
+    rtl_defaults = {p["rtl"]: p["default"] for p in sch["parameters"] if p["rtl"]}
+    composed = {}
+    if args.compose_cpg:
+        for c in list(configs):
+            parts = cpg_variant_of(c, rtl_defaults)
+            if parts:
+                composed[c] = parts
+                configs.remove(c)
+                if parts[0] not in configs:
+                    configs.append(parts[0])
+    cpg_configs = sorted({parts[1] for parts in composed.values()})
 
     xilinx = not args.no_xilinx
     snapshot = tempfile.TemporaryDirectory(prefix="tessim-costs-src-")
@@ -232,44 +299,61 @@ def main(argv):
     cache.mkdir(parents=True, exist_ok=True)
     results = {}
     missing = []
+    cpg_results = {}
     for c in configs:
         path = cache / f"{cache_key(c, digest, yosys, xilinx)}.json"
         if path.exists():
             results[c] = json.loads(path.read_text())["result"]
         else:
-            missing.append((c, path))
-    print(f"costs.py: {len(configs)} RTL configurations, {len(configs) - len(missing)} cached, "
-          f"{len(missing)} to synthesize", file=sys.stderr)
+            missing.append((c, path, False))
+    for c in cpg_configs:
+        path = cache / "cpg" / f"{cache_key(c, digest, yosys, xilinx, cpg_only=True)}.json"
+        if path.exists():
+            cpg_results[c] = json.loads(path.read_text())["result"]
+        else:
+            missing.append((c, path, True))
+    total = len(configs) + len(cpg_configs)
+    print(f"costs.py: {len(configs)} RTL configurations and {len(cpg_configs)} CPG variants alone, "
+          f"{total - len(missing)} cached, {len(missing)} to synthesize", file=sys.stderr)
     if args.dry_run:
         for c in configs:
             print(f"  {'cached ' if c in results else 'missing'}  {describe(c)}", file=sys.stderr)
+        for c in cpg_configs:
+            print(f"  {'cached ' if c in cpg_results else 'missing'}  CPG alone: {describe(c)}", file=sys.stderr)
         return 0
 
     if args.require_cached and missing:
-        for c, _ in missing:
-            print(f"costs.py: error: no recorded cost of {describe(c)} for the current RTL, synth.sh and "
+        for c, _, cpg_only in missing:
+            print(f"costs.py: error: no recorded cost of {'the CPG alone, ' if cpg_only else ''}{describe(c)} for "
+                  f"the current RTL, synth.sh and "
                   f"{yosys} in {cache}; run scripts/costs.py without --require-cached to synthesize it",
                   file=sys.stderr)
         return 1
     if args.cached_only:
         missing = []
     start = time.monotonic()
-    for i, (c, path) in enumerate(missing):
+    for i, (c, path, cpg_only) in enumerate(missing):
         t0 = time.monotonic()
-        print(f"costs.py: [{i + 1}/{len(missing)}] synthesizing {describe(c)} ...", file=sys.stderr, flush=True)
+        print(f"costs.py: [{i + 1}/{len(missing)}] synthesizing {'the CPG alone, ' if cpg_only else ''}"
+              f"{describe(c)} ...", file=sys.stderr, flush=True)
         try:
-            result = synthesize(synth, c, xilinx)
+            result = synthesize(synth, c, xilinx, cpg_only)
         except (RuntimeError, OSError, json.JSONDecodeError) as e:
             print(f"costs.py: error: {e}", file=sys.stderr)
             return 1
         record = {"params": dict(c), "sources_sha256": digest, "yosys": yosys, "xilinx": xilinx,
                   "source": source, "result": result}
+        path.parent.mkdir(parents=True, exist_ok=True)
         sweep.write_atomic(path, json.dumps(record, indent=1) + "\n")
-        results[c] = result
+        (cpg_results if cpg_only else results)[c] = result
         done = time.monotonic() - start
         eta = done / (i + 1) * (len(missing) - i - 1)
         print(f"costs.py: [{i + 1}/{len(missing)}] done in {time.monotonic() - t0:.0f} s, "
               f"ETA {sweep.fmt_time(eta)}", file=sys.stderr, flush=True)
+
+    for c, (base, cpg) in composed.items():
+        if base in results and cpg in cpg_results:
+            results[c] = compose(results[base], cpg_results[cpg], base)
 
     costed = 0
     for r in rows:

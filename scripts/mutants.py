@@ -25,7 +25,8 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL_BUILDS = "n1;n3_lat3"
-N3 = ["--variant", "n3_lat3", "--int", "3", "--int-latency", "3", "--contexts", "6"]
+N3 = ["--variant", "n3_lat3", "--int", "3", "--int-latency", "3", "--contexts", "6", "--cpg-lanes", "3",
+      "--cpg-digit-bits", "5"]
 WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
 # Stimulus, in order; a mutant is run until the first failure. Together: every normal mode,
 # N = 1 and N = 3, INT latency 3, no / constant / random backpressure, degenerate triangles, a

@@ -447,6 +447,163 @@ def fig_cpg_share(rows, out):
                "vertices/cycle", "analytic", "analytic bottleneck"], table)
 
 
+def cpg_variant(r):
+    return (r.get("cpg_lanes") or 1, r.get("cpg_digit_bits") or 1)
+
+
+def cpg_label(v):
+    lanes, r = v
+    return "sequential (Ec 1, r 1)" if v == (1, 1) else f"Ec {lanes}, r {r}"
+
+
+# Reaching the GPE's rate: at least this share of 1/K over the whole run (fill and drain included).
+GPE_RATE_SHARE = 0.97
+
+
+def fig_cpg_variants(rows, out):
+    """The CPG variants (grids cpg, cpg_fast): cycles per vertex against L, the cheapest unit
+    that keeps up with the GPE at each L, throughput against cost, and the fastest unit."""
+    g = in_grid(rows, "cpg")
+    if not g:
+        return out.skip("CPG variants", "no rows of grid 'cpg'")
+    variants = sorted({cpg_variant(r) for r in g}, key=lambda v: (v[0], v[1]))
+    Ls = distinct(g, "tess_factor")
+    ops = {r["normals"]: r["int.ops_per_vertex"] for r in g}
+
+    # Cycles per vertex against L, one line per variant.
+    panels = [(m, n, K) for m in ("quadratic", "reflect") for n, K in ((2, 8), (4, 4))
+              if any(r["normals"] == m and r["int_blocks"] == n and r["gpe_cycles"] == K for r in g)]
+    fig, axes = plt.subplots(2, 2, figsize=(10.5, 8), sharex=True, squeeze=False)
+    for ax, (mode, n, K) in zip(axes.flat, panels):
+        for i, v in enumerate(variants):
+            pts = sorted((r for r in g if cpg_variant(r) == v and r["normals"] == mode and r["int_blocks"] == n
+                          and r["gpe_cycles"] == K), key=lambda r: r["tess_factor"])
+            if not pts:
+                continue
+            ax.plot([r["tess_factor"] for r in pts], [r["cycles_per_vertex"] for r in pts],
+                    "-o" if v[0] == 1 else "--s", ms=3, color=f"C{i % 10}", label=cpg_label(v))
+            ax.plot([r["tess_factor"] for r in pts], [r["analytic.run_cycles_per_vertex"] for r in pts], "x",
+                    ms=4, color="k", alpha=0.5)
+        bound = max(K, ops[mode] / n)
+        ax.axhline(bound, ls=":", color="0.3", lw=1)
+        ax.set_title(f"{mode}, N = {n}, K = {K} (dotted: max(K, {ops[mode]}/N) = {fmt(bound, 3)}; x: model)",
+                     fontsize=8)
+        ax.set_xscale("log", base=2)
+        ax.set_yscale("log")
+        ax.set_xticks(Ls)
+        ax.set_xticklabels([str(x) for x in Ls])
+        ax.set_ylabel("cycles / vertex")
+        ax.set_xlabel("tessellation factor L")
+    axes[0][0].legend(fontsize=6, ncol=2)
+    fig.suptitle(f"Cycles per vertex against L for each CPG variant: Ec edge lanes, r bits a cycle "
+                 f"({workload(g, 'mesh', 'int_latency', 'te_contexts')})", fontsize=9)
+    out.save(fig, "cpg_variants_vs_l")
+
+    # C and the cost of each variant.
+    table = []
+    for v in variants:
+        rv = [r for r in g if cpg_variant(r) == v]
+        C = {m: next((r["cpg_cycles_per_triangle"] for r in rv if r["normals"] == m), "–") for m in ("quadratic", "reflect")}
+        c = next((r for r in rv if r.get("cost_cpg_transistors") is not None), None)
+        n2 = next((r for r in rv if r["int_blocks"] == 2 and r.get("cost_unit_transistors") is not None), None)
+        table.append([cpg_label(v), C["quadratic"], C["reflect"],
+                      fmt(c["cost_cpg_transistors"] / 1e6, 4) if c else "–",
+                      c["cost_cpg_cells"] if c else "–", c["cost_cpg_flops"] if c else "–",
+                      c["cost_cpg_depth"] if c else "–", c["cost_cpg_xilinx_lut"] if c else "–",
+                      c["cost_cpg_xilinx_dsp"] if c else "–",
+                      fmt(n2["cost_unit_transistors"] / 1e6, 4) if n2 else "–"])
+    if not any(row[3] != "–" for row in table):
+        out.skip("CPG variant costs", "no cost_cpg_* columns on grid 'cpg' (run scripts/costs.py --compose-cpg)")
+    out.table("CPG variants: cycles per triangle and cost",
+              ["CPG", "C quadratic", "C reflect", "CPG Mtr", "CPG cells", "CPG flops", "CPG depth", "CPG LUT",
+               "CPG DSP", "unit N = 2, Mtr"], table,
+              note="Yosys 0.23 synthesis of tess_cpg alone (scripts/synth.sh --cpg-only); the unit is the N = 2 "
+                   "unit with its sequential CPG replaced (costs.py --compose-cpg).")
+
+    # The cheapest unit that reaches the GPE's rate, per L.
+    costed = [r for r in g if r.get("cost_unit_transistors") is not None]
+    table = []
+    for K in distinct(g, "gpe_cycles"):
+        for mode in distinct(g, "normals"):
+            for L in Ls:
+                pts = [r for r in costed if r["gpe_cycles"] == K and r["normals"] == mode and r["tess_factor"] == L]
+                ok = [r for r in pts if r["throughput"] >= GPE_RATE_SHARE / K]
+                seq = [r for r in ok if cpg_variant(r) == (1, 1)]
+                best = min(ok, key=lambda r: r["cost_unit_transistors"]) if ok else None
+                fastest = max(pts, key=lambda r: r["throughput"]) if pts else None
+                table.append([K, mode, L,
+                              f"{cpg_label(cpg_variant(best))}, N = {best['int_blocks']}" if best else "none",
+                              fmt(best["cost_unit_transistors"] / 1e6, 4) if best else "–",
+                              fmt(best["throughput"] * K, 4) if best else "–",
+                              f"N = {min(r['int_blocks'] for r in seq)}" if seq else "none",
+                              f"{fmt(fastest['throughput'] * K, 4)} ({cpg_label(cpg_variant(fastest))}, "
+                              f"N = {fastest['int_blocks']})" if fastest else "–"])
+    out.table("Cheapest unit that reaches the GPE's rate, per L",
+              ["K", "normals", "L", f"cheapest (CPG, N) with throughput ≥ {GPE_RATE_SHARE}/K", "unit Mtr",
+               "throughput × K", "sequential CPG: smallest N", "best throughput × K (CPG, N)"], table,
+              note=f"Grid `cpg` ({workload(g, 'mesh', 'int_latency', 'te_contexts')}); costs as in the table above.")
+
+    # Throughput against cost, with the Pareto front, at K = 8 and K = 4 for small L.
+    pL = [L for L in (2, 4, 8) if L in Ls]
+    Ks = [K for K in (8, 4) if K in distinct(g, "gpe_cycles")]
+    if not costed:
+        return out.skip("CPG variants: throughput vs transistors", "no costed rows in grid 'cpg'")
+    fig, axes = plt.subplots(len(Ks), len(pL), figsize=(4 * len(pL), 3.6 * len(Ks)), squeeze=False)
+    front_rows = []
+    for i, K in enumerate(Ks):
+        for j, L in enumerate(pL):
+            ax = axes[i][j]
+            pts = [(r["cost_unit_transistors"] / 1e6, r["throughput"],
+                    f"{'S' if cpg_variant(r) == (1, 1) else f'{cpg_variant(r)[0]}x{cpg_variant(r)[1]}'} N{r['int_blocks']}", r)
+                   for r in costed if r["gpe_cycles"] == K and r["tess_factor"] == L and r["normals"] == "quadratic"]
+            front = pareto(pts)
+            for v_i, v in enumerate(variants):
+                sel = [p for p in pts if cpg_variant(p[3]) == v]
+                ax.plot([p[0] for p in sel], [p[1] for p in sel], "o", ms=3, color=f"C{v_i % 10}", label=cpg_label(v))
+            ax.step([p[0] for p in front], [p[1] for p in front], "-", where="post", color="k", lw=0.8)
+            for p in front:
+                ax.annotate(p[2], (p[0], p[1]), textcoords="offset points", xytext=(3, -8), fontsize=6)
+                front_rows.append([K, L, p[2], fmt(p[0], 4), fmt(p[1], 4), fmt(p[1] / p[0], 4)])
+            ax.axhline(1.0 / K, ls="--", color="0.4", lw=0.8)
+            ax.set_title(f"quadratic, L = {L}, K = {K} (dashed: 1/K)", fontsize=8)
+            ax.set_xlabel("whole unit, million transistors")
+            ax.set_ylabel("vertices / cycle")
+    axes[0][0].legend(fontsize=6)
+    fig.suptitle("Throughput against the unit's transistors over CPG variant × N (line: Pareto front; "
+                 "label Ec×r or S for the sequential CPG)", fontsize=9)
+    out.save(fig, "cpg_pareto")
+    out.table("Pareto front over CPG variant and N (quadratic normals)",
+              ["K", "L", "configuration", "unit Mtr", "vertices/cycle", "vertices/cycle/Mtr"], front_rows)
+
+    # A fast GPE (K = 1): the fastest units.
+    f = in_grid(rows, "cpg_fast")
+    if f:
+        table = []
+        for mode in distinct(f, "normals"):
+            for L in distinct(f, "tess_factor"):
+                pts = sorted((r for r in f if r["normals"] == mode and r["tess_factor"] == L),
+                             key=lambda r: (r["cpg_digit_bits"], r["int_blocks"]))
+                best = max(pts, key=lambda r: r["throughput"])
+                table.append([mode, L] + [fmt(r["throughput"], 4) for r in pts] +
+                             [f"{cpg_label(cpg_variant(best))}, N = {best['int_blocks']}: {best['bottleneck']}"])
+        cols = [f"Ec {r['cpg_lanes']} r {r['cpg_digit_bits']} N {r['int_blocks']}"
+                for r in sorted((r for r in f if r["normals"] == distinct(f, "normals")[0] and
+                                 r["tess_factor"] == distinct(f, "tess_factor")[0]),
+                                key=lambda r: (r["cpg_digit_bits"], r["int_blocks"]))]
+        out.table("A fast geometry engine (K = 1): vertices per cycle", ["normals", "L"] + cols + ["best: bottleneck"],
+                  table, note=f"Grid `cpg_fast` ({workload(f, 'mesh', 'int_latency', 'te_contexts', 'gpe_cycles')}).")
+
+    # The analytical model against the simulation on the CPG grids.
+    both = g + (f or [])
+    errs = sorted(abs(r["analytic.run_cycles"] - r["cycles"]) / r["cycles"] for r in both)
+    worst = max(both, key=lambda r: abs(r["analytic.run_cycles"] - r["cycles"]) / r["cycles"])
+    out.table("Analytical model against the cycle model, CPG variants",
+              ["points", "within 0.1 %", "within 1 %", "largest difference", "at"],
+              [[len(errs), sum(e <= 1e-3 for e in errs), sum(e <= 1e-2 for e in errs), f"{fmt(100 * errs[-1], 3)} %",
+                f"{cpg_label(cpg_variant(worst))}, N = {worst['int_blocks']}, L = {worst['tess_factor']}, "
+                f"K = {worst['gpe_cycles']}, V = {worst['te_contexts']}, {worst['normals']}"]])
+
+
 def fig_contexts(rows, out):
     c = in_grid(rows, "contexts")
     if not c:
@@ -894,6 +1051,7 @@ def main(argv):
     fig_utilisation_vs_n(rows, out)
     fig_cost(rows, out)
     fig_cpg_share(rows, out)
+    fig_cpg_variants(rows, out)
     fig_contexts(rows, out)
     fig_normals(rows, out)
     fig_stall(rows, out)

@@ -65,11 +65,12 @@ fi
 if [[ $set_name == small ]]; then
   [[ -n $out ]] || out="$root/docs/results"
   # The Pareto figure needs the unit's cost at each N of the balance grid (default widths, Λ = 1,
-  # V = 4); the small set keeps to the N that matter for the conclusions.
-  cost_filter=(grid=balance int_blocks=1,2,3,4,6)
+  # V = 4); the small set keeps to the N that matter for the conclusions. The CPG variants of the
+  # cpg grid are costed as those units with their CPG replaced (costs.py --compose-cpg).
+  cost_filter=(--where grid=balance int_blocks=1,2,3,4,6 --where grid=cpg --compose-cpg)
 else
   [[ -n $out ]] || out="$root/docs/results/full"
-  cost_filter=(grid=balance,costs int_blocks=1,2,3,4,5,6)
+  cost_filter=(--where grid=balance,costs int_blocks=1,2,3,4,5,6)
 fi
 work="$build/results/$set_name"
 mkdir -p "$work" "$out"
@@ -77,7 +78,7 @@ mkdir -p "$work" "$out"
 start=$SECONDS
 "$python" scripts/sweep.py "scripts/sweeps/$set_name.json" -o "$work/results.csv" --cache "$work/cache" \
   --jobs "$jobs" --tessim "$tessim"
-"$python" scripts/costs.py "$work/results.csv" --tessim "$tessim" --cache "$cost_cache" --where "${cost_filter[@]}" "${cost_mode[@]}"
+"$python" scripts/costs.py "$work/results.csv" --tessim "$tessim" --cache "$cost_cache" "${cost_filter[@]}" "${cost_mode[@]}"
 cp "$work/results.csv" "$out/results.csv"
 "$python" scripts/plots.py "$out/results.csv" --out "$out" --tessim "$tessim"
 echo "results.sh: $set_name set done in $((SECONDS - start)) s: $out" >&2

@@ -11,15 +11,17 @@
 # Usage: scripts/synth.sh [options] [N] [-chparam NAME VALUE ...]
 #   N                   INT blocks (IntBlocks), default tess_pkg::IntBlocks
 #   -chparam NAME VALUE any other parameter of tess_unit (CoordIntBits, CoordFracBits,
-#                       BaryBits, IntLatency, Contexts, TriFifoDepth, VtxFifoDepth)
+#                       BaryBits, IntLatency, Contexts, TriFifoDepth, VtxFifoDepth, CpgLanes,
+#                       CpgDigitBits)
 #   --json FILE         also write the numbers as JSON (FILE = - for stdout only)
 #   --no-blocks         only the whole unit
+#   --cpg-only          only the CPG (costs.py --compose-cpg: a CPG variant in a known unit)
 #   --no-xilinx         skip synth_xilinx
 #   --jobs J            Yosys runs in parallel (default 2)
 #   --keep DIR          keep the Yosys logs and reports in DIR
 set -euo pipefail
 
-usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; }
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 json=""
@@ -40,6 +42,7 @@ while (($#)); do
     -h|--help) usage; exit 0 ;;
     --json) json=${2:?--json needs a file}; shift 2 ;;
     --no-blocks) blocks=0; shift ;;
+    --cpg-only) blocks=2; shift ;;
     --no-xilinx) xilinx=0; shift ;;
     --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
     --keep) keep=${2:?--keep needs a directory}; shift 2 ;;
@@ -53,7 +56,7 @@ done
 for name in "${order[@]}"; do
   [[ ${params[$name]} =~ ^[0-9]+$ ]] || { echo "synth.sh: $name must be a number" >&2; exit 2; }
   case "$name" in
-    CoordIntBits|CoordFracBits|BaryBits|IntBlocks|IntLatency|Contexts|TriFifoDepth|VtxFifoDepth) ;;
+    CoordIntBits|CoordFracBits|BaryBits|IntBlocks|IntLatency|Contexts|TriFifoDepth|VtxFifoDepth|CpgLanes|CpgDigitBits) ;;
     *) echo "synth.sh: tess_unit has no parameter '$name'" >&2; exit 2 ;;
   esac
 done
@@ -85,6 +88,7 @@ fi
 value() { if [[ -v "params[$1]" ]]; then echo "${params[$1]}"; else pkg_default "$1"; fi; }
 I=$(value CoordIntBits); F=$(value CoordFracBits); B=$(value BaryBits)
 N=$(value IntBlocks); LAT=$(value IntLatency); V=$(value Contexts)
+CL=$(value CpgLanes); CR=$(value CpgDigitBits)
 W=$((1 + I + F))
 idx_bits=1; while (( (1 << idx_bits) < V )); do idx_bits=$((idx_bits + 1)); done
 
@@ -96,7 +100,7 @@ chparams_for() {
     tess_unit)
       for name in "${order[@]}"; do out+="chparam -set $name ${params[$name]} tess_unit; "; done ;;
     tess_cpg)
-      out="chparam -set CoordIntBits $I -set CoordFracBits $F tess_cpg; " ;;
+      out="chparam -set CoordIntBits $I -set CoordFracBits $F -set CpgLanes $CL -set CpgDigitBits $CR tess_cpg; " ;;
     tess_int)
       out="chparam -set CoordWidth $W -set BaryBits $B -set Latency $LAT -set TagWidth $((idx_bits + 4)) tess_int; " ;;
   esac
@@ -118,7 +122,8 @@ xilinx_job() {  # module
 }
 
 modules=(tess_unit)
-((blocks)) && modules+=(tess_cpg tess_int)
+((blocks == 1)) && modules+=(tess_cpg tess_int)
+((blocks == 2)) && modules=(tess_cpg)
 tasks=()
 for m in "${modules[@]}"; do
   tasks+=("generic_job $m")

@@ -61,6 +61,14 @@ void UnitConfig::validate(const std::string& source) const {
   if (format.coord_width() > kMaxCoordWidth)
     throw InputError(source, "coord_int_bits + coord_frac_bits",
                      "coordinate width " + std::to_string(format.coord_width()) + " exceeds " + std::to_string(kMaxCoordWidth) + " bits");
+  if (cpg.lanes == 2) throw InputError(source, "cpg_lanes", "value 2: the CPG has 1 lane (edges in turn) or 3 (one per edge)");
+  if (cpg.digit_bits > format.coord_width())
+    throw InputError(source, "cpg_digit_bits",
+                     "value " + std::to_string(cpg.digit_bits) + " exceeds the coordinate width " +
+                         std::to_string(format.coord_width()) + " (a whole quotient in one cycle)");
+  if (cpg_mapping == CpgMapping::Gpe && !(cpg == CpgVariant{}))
+    throw InputError(source, "cpg_lanes / cpg_digit_bits",
+                     "describe the dedicated CPG; with cpg_mapping gpe the CPG takes cpg_gpe_cycles");
   if (!hardware_supports(normals))
     throw InputError(source, "normals",
                      "'" + std::string(to_string(normals)) +

@@ -12,6 +12,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "model/normal_mode.hpp"
+#include "sim/cpg.hpp"
 #include "sim/fixed.hpp"
 
 namespace tessim::sim {
@@ -31,6 +32,7 @@ struct HardwareConfig {
   int tri_fifo_depth = 2;    // input triangle FIFO in front of the CPG
   int vtx_fifo_depth = 2;    // output vertex FIFO between the TE and the geometry engine
   CpgMapping cpg_mapping = CpgMapping::Dedicated;
+  CpgVariant cpg;            // datapath shape of the dedicated CPG (lanes, digit bits)
   bool operator==(const HardwareConfig&) const = default;
 };
 

@@ -102,24 +102,32 @@ ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, c
   return cp;
 }
 
-int cpg_edge_cycles(NormalMode mode, const NumberFormat& f) {
-  const int W = f.coord_width();
+int cpg_digit_steps(const NumberFormat& f, int digit_bits) {
+  if (digit_bits < 1) throw std::invalid_argument("CPG digit bits must be at least 1");
+  return (f.coord_width() + digit_bits - 1) / digit_bits;
+}
+
+int cpg_edge_cycles(NormalMode mode, const NumberFormat& f, int digit_bits) {
+  const int D = cpg_digit_steps(f, digit_bits);
   // 6 cycles of geometry: d and s; three dot products (d.s, d.Na, d.Nb); two tangent points.
   constexpr int kGeometry = 6;
   switch (mode) {
     case NormalMode::Linear: return kGeometry;
-    // + d.d, W-cycle division (3 lanes), m = s - k t
-    case NormalMode::Reflect: return kGeometry + 1 + W + 1;
-    // + m.m, W-cycle square root, W-cycle division (3 lanes)
-    case NormalMode::Quadratic: return kGeometry + 1 + W + 1 + 1 + W + W;
+    // + d.d, D-cycle division (3 slices), m = s - k t
+    case NormalMode::Reflect: return kGeometry + 1 + D + 1;
+    // + m.m, D-cycle square root, D-cycle division (3 slices)
+    case NormalMode::Quadratic: return kGeometry + 1 + D + 1 + 1 + D + D;
     case NormalMode::Derivative: break;
   }
   throw std::invalid_argument("normal mode not implemented by the unit");
 }
 
-int cpg_cycles(NormalMode mode, const NumberFormat& f) {
-  // three edges, then one cycle for b111 and one for the write into the control-point buffer
-  return 3 * cpg_edge_cycles(mode, f) + 2;
+int cpg_cycles(NormalMode mode, const NumberFormat& f, const CpgVariant& v) {
+  if (v.lanes != 1 && v.lanes != 3) throw std::invalid_argument("CPG lanes must be 1 or 3");
+  // the edges (in turn or at once), then one cycle for b111 and one for the write into the
+  // control-point buffer
+  const int edges_in_turn = v.lanes == 1 ? 3 : 1;
+  return edges_in_turn * cpg_edge_cycles(mode, f, v.digit_bits) + 2;
 }
 
 }  // namespace tessim::sim

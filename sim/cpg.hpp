@@ -37,10 +37,22 @@ bool hardware_supports(NormalMode mode);
 // Values of the dedicated CPG for one triangle.
 ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, const NumberFormat& fmt);
 
-// Cycles the dedicated CPG spends on one triangle, accept cycle excluded (see the doc):
-// 3 edges in sequence plus the centre point and the write.
-int cpg_edge_cycles(NormalMode mode, const NumberFormat& fmt);
-int cpg_cycles(NormalMode mode, const NumberFormat& fmt);
+// The shape of the dedicated CPG's datapath (docs/microarchitecture.md §5): only its timing
+// and cost depend on it, never a value.
+struct CpgVariant {
+  int lanes = 1;       // edge lanes: 1 walks the three edges in turn, 3 computes them at once
+  int digit_bits = 1;  // r: quotient / root bits the dividers and the square root retire a cycle
+  bool operator==(const CpgVariant&) const = default;
+};
+inline constexpr int kMaxCpgDigitBits = 32;
+
+// D: cycles of one division or square root, ceil(W / r).
+int cpg_digit_steps(const NumberFormat& fmt, int digit_bits);
+// Cycles the dedicated CPG spends on one edge (E) and on one triangle (C), accept cycle
+// excluded (see the doc): the edges in turn (one lane) or at once (three lanes), then the
+// centre point and the write.
+int cpg_edge_cycles(NormalMode mode, const NumberFormat& fmt, int digit_bits = 1);
+int cpg_cycles(NormalMode mode, const NumberFormat& fmt, const CpgVariant& variant = {});
 
 // Mode encoding on the unit's mode input and in the RTL package.
 constexpr int mode_code(NormalMode m) {

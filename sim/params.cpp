@@ -32,7 +32,7 @@ constexpr auto E = ParamKind::Environment;
 constexpr auto W = ParamKind::Workload;
 constexpr auto I = ParamType::Int;
 
-const std::array<ParamSpec, 15> kParams{{
+const std::array<ParamSpec, 17> kParams{{
     {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
      "tessellation factor: segments per edge, the same for every triangle of a run",
      TESSIM_PARAM_FIELD(tess_factor)},
@@ -61,6 +61,12 @@ const std::array<ParamSpec, 15> kParams{{
      [](UnitConfig& c, const json& v) {
        c.cpg_mapping = v.get<std::string>() == "gpe" ? CpgMapping::Gpe : CpgMapping::Dedicated;
      }},
+    {"cpg_lanes", "--cpg-lanes", "", "CpgLanes", "Ec", H, I, 1, 3, {}, "edges",
+     "edge lanes of the dedicated CPG: 1 computes the three edges in turn, 3 all at once",
+     TESSIM_PARAM_FIELD(cpg.lanes)},
+    {"cpg_digit_bits", "--cpg-digit-bits", "", "CpgDigitBits", "r", H, I, 1, kMaxCpgDigitBits, {}, "bits",
+     "quotient / root bits the dedicated CPG's dividers and square root retire per cycle (radix 2^r)",
+     TESSIM_PARAM_FIELD(cpg.digit_bits)},
     {"cpg_gpe_cycles", "--cpg-gpe-cycles", "", nullptr, "", E, I, 1, kMaxCycles, {}, "cycles",
      "geometry-engine cycles the CPG needs per triangle when mapped there (cpg_mapping gpe)",
      TESSIM_PARAM_FIELD(cpg_gpe_cycles)},
@@ -267,6 +273,16 @@ nlohmann::json schema_json() {
   for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear})
     cpg_cycles_json[std::string(to_string(m))] =
         per_format("cycles", [m](const NumberFormat& fmt) { return cpg_cycles(m, fmt); });
+  // C of every CPG variant at the default coordinate format (sim::cpg_cycles).
+  json cpg_variants_json = json::array();
+  for (int lanes : {1, 3}) {
+    for (int r = 1; r <= defaults.format.coord_width(); ++r) {
+      json row = {{"cpg_lanes", lanes}, {"cpg_digit_bits", r}};
+      for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear})
+        row[std::string(to_string(m))] = cpg_cycles(m, defaults.format, {lanes, r});
+      cpg_variants_json.push_back(row);
+    }
+  }
   // The arithmetic position bound (sim::position_error_budget, docs/number-formats.md §5.1) in
   // unit coordinates: times the mesh's half-extent (tessim info --json) gives mesh units.
   const json position_bound_json =
@@ -280,6 +296,7 @@ nlohmann::json schema_json() {
       {"int_ops_per_mode", per_mode},
       {"statistics", stats},
       {"cpg_cycles", cpg_cycles_json},
+      {"cpg_cycles_by_variant", cpg_variants_json},
       {"position_bound", position_bound_json},
   };
 }

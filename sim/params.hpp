@@ -58,7 +58,7 @@ std::vector<std::string> alias_list(const ParamSpec& p);
 std::string cli_names(const ParamSpec& p);
 
 // The whole description as JSON (what `tessim schema` prints): "parameters", "int_ops",
-// "statistics", "cpg_cycles", "rtl_parameters".
+// "statistics", "cpg_cycles", "cpg_cycles_by_variant", "rtl_parameters".
 nlohmann::json schema_json();
 
 }  // namespace tessim::sim

@@ -32,7 +32,7 @@ const HardwareConfig& checked(const HardwareConfig& cfg, NormalMode normals) {
 // Dedicated: accept, C - 1 compute cycles, write (doc §5). GPE mapping: the counter is loaded
 // with C so that the CPG consumes exactly C spare GPE cycles per triangle.
 int cpg_counter_load(const HardwareConfig& cfg, NormalMode normals, int cpg_gpe_cycles) {
-  return cfg.cpg_mapping == CpgMapping::Gpe ? cpg_gpe_cycles : cpg_cycles(normals, cfg.format);
+  return cfg.cpg_mapping == CpgMapping::Gpe ? cpg_gpe_cycles : cpg_cycles(normals, cfg.format, cfg.cpg);
 }
 
 }  // namespace

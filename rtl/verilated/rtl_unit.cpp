@@ -87,4 +87,13 @@ std::vector<std::string> rtl_variants() {
   return names;
 }
 
+std::optional<std::string> find_rtl_variant(const sim::HardwareConfig& hw, bool verif) {
+  sim::HardwareConfig want = hw;
+  want.cpg_mapping = sim::CpgMapping::Dedicated;
+  for (const Variant& v : kVariants) {
+    if (v.spec.inject_bug() == 0 && v.spec.randomize_x == verif && v.spec.config() == want) return v.spec.name;
+  }
+  return std::nullopt;
+}
+
 }  // namespace tessim::rtl

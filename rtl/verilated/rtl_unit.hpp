@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -82,6 +83,9 @@ class RtlUnit : public sim::Dut {
 // fault). Throws std::invalid_argument for an unknown name.
 std::unique_ptr<RtlUnit> make_rtl_unit(const std::string& variant, std::uint64_t seed = 1);
 std::vector<std::string> rtl_variants();
+// The first fault-free build (a VERIF build if `verif`) that implements exactly `hw` (its CPG
+// mapping aside), if there is one.
+std::optional<std::string> find_rtl_variant(const sim::HardwareConfig& hw, bool verif);
 
 // Throws InputError naming the first parameter of `cfg` that the variant was not built with
 // (widths, N, latency, contexts, FIFO depths; also a CPG mapping or normal mode the RTL lacks).

@@ -181,11 +181,46 @@ TEST(CosimLatency3, AgreesInEveryModeAndUnderBackpressure) {
       o.variant = "n3_lat3";
       o.unit.int_latency = 3;
       o.unit.te_contexts = 6;
+      o.unit.cpg = {3, 5};
       o.unit.normals = mode;
       const auto stream = random_triangles(24, o.seed, o.unit.format, 6);
       const CosimReport r = run_cosim(stream, o);
       expect_pass(r, o);
       EXPECT_EQ(r.vertices, expected_vertices(stream));
+    }
+  }
+}
+
+// The CPG variants (docs/microarchitecture.md §5): one lane with radix-16 steps (N = 1), three
+// lanes with radix-256 steps (N = 2) and with a whole quotient a cycle (N = 4), in every mode,
+// with and without random stalls, in range and saturating. n3_lat3 (three lanes, steps that do
+// not divide W) is covered above. The values must not change and the timing must agree.
+TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
+  struct Build {
+    const char* name;
+    int n;
+    sim::CpgVariant cpg;
+  };
+  for (const Build b : {Build{"n1_r4", 1, {1, 4}}, Build{"n2_l3r8", 2, {3, 8}}, Build{"n4_l3r24", 4, {3, 24}}}) {
+    for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+      for (const Backpressure bp : {Backpressure{"none", 0.0, 1}, Backpressure{"random", 0.3, 2}}) {
+        CosimOptions o = options(b.n, bp.stall, bp.gpe_cycles, 61);
+        o.variant = b.name;
+        o.unit.cpg = b.cpg;
+        o.unit.normals = mode;
+        const auto stream = random_triangles(24, o.seed, o.unit.format, 6);
+        const CosimReport r = run_cosim(stream, o);
+        SCOPED_TRACE(std::string(b.name) + " " + std::string(to_string(mode)) + " " + bp.name);
+        expect_pass(r, o);
+        EXPECT_EQ(r.vertices, expected_vertices(stream));
+      }
+      CosimOptions o = options(b.n, 0.0, 1, 5);
+      o.variant = b.name;
+      o.unit.cpg = b.cpg;
+      o.unit.normals = mode;
+      const CosimReport r = run_cosim(random_triangles(60, o.seed, o.unit.format, 3, 0.1, 30.0), o);
+      expect_pass(r, o);
+      EXPECT_GT(r.reference.saturated, 0u) << b.name << " " << to_string(mode);
     }
   }
 }

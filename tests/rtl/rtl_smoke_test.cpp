@@ -224,7 +224,8 @@ void expect_counters_consistent(const RunResult& r, const rtl::RtlUnit& unit, st
   EXPECT_EQ(ops, r.vertices.size() * static_cast<std::uint64_t>(ops_per_vertex(mode))) << what;
   EXPECT_GE(k.int_busy[0], k.te_busy + k.te_int_limited) << what;
   EXPECT_GE(k.int_busy[unit.int_blocks() - 1], k.te_int_limited) << what;
-  EXPECT_GE(k.cpg_busy, triangles * static_cast<std::uint64_t>(sim::cpg_cycles(mode, kFormat) + 1)) << what;
+  EXPECT_GE(k.cpg_busy, triangles * static_cast<std::uint64_t>(sim::cpg_cycles(mode, kFormat, unit.config().cpg) + 1))
+      << what;
 }
 
 bool always(std::uint64_t) { return true; }
@@ -235,7 +236,8 @@ constexpr std::array<NormalMode, 3> kModes{NormalMode::Quadratic, NormalMode::Re
 
 TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   const std::vector<std::string> names = rtl::rtl_variants();
-  EXPECT_EQ(names, (std::vector<std::string>{"n1", "n2", "n3", "n4", "n2_verif", "n3_lat3", "n2_bug1", "n2_bug2"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"n1", "n2", "n3", "n4", "n2_verif", "n3_lat3", "n1_r4", "n2_l3r8",
+                                             "n4_l3r24", "n2_bug1", "n2_bug2"}));
   EXPECT_THROW(rtl::make_rtl_unit("n9"), std::invalid_argument);
   auto unit = rtl::make_rtl_unit("n3");
   EXPECT_EQ(unit->int_blocks(), 3);
@@ -248,6 +250,18 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   EXPECT_EQ(lat3->int_blocks(), 3);
   EXPECT_EQ(lat3->contexts(), 6);
   EXPECT_EQ(lat3->int_latency(), 3);
+  EXPECT_EQ(lat3->config().cpg, (sim::CpgVariant{3, 5}));
+  EXPECT_EQ(rtl::make_rtl_unit("n1_r4")->config().cpg, (sim::CpgVariant{1, 4}));
+  EXPECT_EQ(rtl::make_rtl_unit("n2_l3r8")->config().cpg, (sim::CpgVariant{3, 8}));
+  EXPECT_EQ(rtl::make_rtl_unit("n4_l3r24")->config().cpg, (sim::CpgVariant{3, 24}));
+  // A configuration finds the build that implements its hardware; fault builds are never chosen.
+  sim::HardwareConfig hw;
+  EXPECT_EQ(rtl::find_rtl_variant(hw, false), "n2");
+  EXPECT_EQ(rtl::find_rtl_variant(hw, true), "n2_verif");
+  hw.cpg = {3, 8};
+  EXPECT_EQ(rtl::find_rtl_variant(hw, false), "n2_l3r8");
+  hw.cpg = {3, 7};
+  EXPECT_EQ(rtl::find_rtl_variant(hw, false), std::nullopt);
 }
 
 TEST(RtlSmoke, ConfigurationCheckNamesTheFirstDifference) {
@@ -302,6 +316,12 @@ TEST(RtlSmoke, PatchesMatchTheReferenceArithmeticInEveryMode) {
   for (const char* name : {"n1", "n2", "n3", "n4", "n2_verif"}) expect_build_matches_reference(name, 11, tris);
 }
 
+// The CPG variants compute the same values as the sequential CPG, only sooner.
+TEST(RtlSmoke, CpgVariantsMatchTheReferenceArithmeticInEveryMode) {
+  const std::vector<TriangleFx> tris = fixed_triangles();
+  for (const char* name : {"n3_lat3", "n1_r4", "n2_l3r8", "n4_l3r24"}) expect_build_matches_reference(name, 12, tris);
+}
+
 TEST(RtlSmoke, ReferenceFlagsAreExercised) {
   // The fixed stimulus must reach the divide-by-zero and saturation paths of the CPG.
   const std::vector<TriangleFx> tris = fixed_triangles();
@@ -354,12 +374,12 @@ TEST(RtlSmoke, FirstVertexTimingShowsTheCpgCycleCount) {
   // C+2: the DPG allocates a context. C+3..C+2+S: the vertex's ops issue (S cycles).
   // C+3+S: it retires into the VTX FIFO. C+4+S: vtx_valid, the GPE side accepts it.
   const TriangleFx tri = fixed_triangles()[0];
-  for (const char* name : {"n1", "n2", "n3", "n4", "n2_verif"}) {
+  for (const char* name : {"n1", "n2", "n3", "n4", "n2_verif", "n1_r4", "n2_l3r8", "n4_l3r24"}) {
     auto unit = rtl::make_rtl_unit(name, 9);
     for (NormalMode mode : kModes) {
       const RunResult r = run_stream(*unit, mode, {tri}, 1, always);
       ASSERT_EQ(r.vertices.size(), 1u);
-      const int C = sim::cpg_cycles(mode, kFormat);
+      const int C = sim::cpg_cycles(mode, kFormat, unit->config().cpg);
       const int S = lone_vertex_issue_cycles(unit->int_blocks(), mode == NormalMode::Linear);
       EXPECT_EQ(r.vertices[0].cycle, static_cast<std::uint64_t>(C + 4 + S))
           << name << " " << to_string(mode) << " C = " << C << " S = " << S;
@@ -368,6 +388,14 @@ TEST(RtlSmoke, FirstVertexTimingShowsTheCpgCycleCount) {
   EXPECT_EQ(sim::cpg_cycles(NormalMode::Quadratic, kFormat), 245);
   EXPECT_EQ(sim::cpg_cycles(NormalMode::Reflect, kFormat), 98);
   EXPECT_EQ(sim::cpg_cycles(NormalMode::Linear, kFormat), 20);
+  // C = 3E + 2 (one lane) or E + 2 (three lanes), E = 6, D + 8, 3D + 9, D = ceil(24 / r).
+  EXPECT_EQ(sim::cpg_cycles(NormalMode::Quadratic, kFormat, {1, 4}), 83);
+  EXPECT_EQ(sim::cpg_cycles(NormalMode::Reflect, kFormat, {1, 4}), 44);
+  EXPECT_EQ(sim::cpg_cycles(NormalMode::Quadratic, kFormat, {3, 8}), 20);
+  EXPECT_EQ(sim::cpg_cycles(NormalMode::Reflect, kFormat, {3, 8}), 13);
+  EXPECT_EQ(sim::cpg_cycles(NormalMode::Linear, kFormat, {3, 8}), 8);
+  EXPECT_EQ(sim::cpg_cycles(NormalMode::Quadratic, kFormat, {3, 24}), 14);
+  EXPECT_EQ(sim::cpg_cycles(NormalMode::Quadratic, kFormat, {3, 5}), 3 * 5 + 9 + 2);
 }
 
 TEST(RtlSmoke, CpgOverlapsTheTeOfThePreviousTriangle) {

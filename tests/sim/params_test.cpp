@@ -315,6 +315,18 @@ TEST(Schema, CpgCyclesAreSimCpgCyclesAndIgnoreBaryBits) {
   }
 }
 
+TEST(Schema, CpgCyclesByVariantAreSimCpgCycles) {
+  const json rows = schema_json()["cpg_cycles_by_variant"];
+  ASSERT_EQ(rows.size(), 2u * static_cast<std::size_t>(NumberFormat{}.coord_width()));
+  for (const json& r : rows) {
+    const CpgVariant v{r["cpg_lanes"].get<int>(), r["cpg_digit_bits"].get<int>()};
+    for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear})
+      EXPECT_EQ(r[std::string(to_string(m))].get<int>(), cpg_cycles(m, NumberFormat{}, v));
+  }
+  EXPECT_EQ(rows[0]["quadratic"], 245);            // one lane, one bit a cycle
+  EXPECT_EQ(rows.back()["quadratic"], 12 + 2);     // three lanes, a whole quotient a cycle
+}
+
 // The arithmetic position bound per coordinate format, which scripts/plots.py draws: the C++
 // derivation, for every valid format, independent of bary_bits.
 TEST(Schema, PositionBoundsArePositionErrorBudget) {

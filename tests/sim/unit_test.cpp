@@ -150,6 +150,72 @@ TEST(UnitTimeline, SingleContextSingleBlock) {
   EXPECT_EQ(r.unit.te.idle, 2u);  // cycle 0 (nothing queued yet) and the last cycle
 }
 
+void expect_consistent(const SimResult& r, std::uint64_t triangles, int L, NormalMode mode);
+
+// The CPG variants change C and nothing else: the same vertices, bit for bit, and a
+// single-triangle timeline that is longer or shorter by exactly the difference in C.
+TEST(UnitTimeline, CpgVariantsChangeOnlyC) {
+  Mesh one = bumpy_sphere(0);
+  one.triangles.resize(1);
+  const Mesh mesh = bumpy_sphere(1);
+  for (NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
+    UnitConfig base = config(2, 4, 1, 3, 3);
+    base.normals = mode;
+    const std::vector<VertexFx> want = run_vertices(mesh, base);
+    UnitConfig single_base = config(1, 1, 1, 1, 1);
+    single_base.normals = mode;
+    const std::uint64_t single_rest = simulate(one, single_base).unit.cycles -
+                                      static_cast<std::uint64_t>(cpg_cycles(mode, single_base.format));
+    for (const CpgVariant v : {CpgVariant{1, 2}, CpgVariant{1, 7}, CpgVariant{3, 1}, CpgVariant{3, 8},
+                               CpgVariant{3, 24}}) {
+      UnitConfig cfg = base;
+      cfg.cpg = v;
+      cfg.validate("test");
+      SimResult r;
+      EXPECT_EQ(run_vertices(mesh, cfg, &r), want) << to_string(mode) << " lanes " << v.lanes << " r " << v.digit_bits;
+      EXPECT_EQ(r.cpg_cycles, cpg_cycles(mode, cfg.format, v));
+      expect_consistent(r, mesh.triangle_count(), cfg.tess_factor, mode);
+      UnitConfig single = single_base;
+      single.cpg = v;
+      EXPECT_EQ(simulate(one, single).unit.cycles, static_cast<std::uint64_t>(cpg_cycles(mode, single.format, v)) + single_rest);
+    }
+  }
+  // C = 3E + 2 or E + 2 with E = 6, D + 8, 3D + 9 and D = ceil(W / r); W = 24 here.
+  const NumberFormat f;
+  EXPECT_EQ(cpg_cycles(NormalMode::Quadratic, f, {1, 1}), 245);
+  EXPECT_EQ(cpg_cycles(NormalMode::Quadratic, f, {1, 2}), 3 * (36 + 9) + 2);
+  EXPECT_EQ(cpg_cycles(NormalMode::Quadratic, f, {3, 1}), 81 + 2);
+  EXPECT_EQ(cpg_cycles(NormalMode::Reflect, f, {3, 7}), 4 + 8 + 2);
+  EXPECT_EQ(cpg_cycles(NormalMode::Linear, f, {3, 24}), 8);
+}
+
+TEST(UnitConfigCheck, CpgVariantOutsideTheDesignSpaceIsRejected) {
+  auto reason = [](const UnitConfig& c) {
+    try {
+      c.validate("cfg.json");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  UnitConfig c;
+  c.cpg.lanes = 2;
+  EXPECT_NE(reason(c).find("cfg.json: cpg_lanes: value 2"), std::string::npos) << reason(c);
+  c = UnitConfig{};
+  c.cpg.lanes = 4;
+  EXPECT_NE(reason(c).find("cpg_lanes"), std::string::npos) << reason(c);
+  c = UnitConfig{};
+  c.cpg.digit_bits = 25;  // W = 24
+  EXPECT_NE(reason(c).find("cpg_digit_bits: value 25 exceeds the coordinate width 24"), std::string::npos) << reason(c);
+  c.cpg.digit_bits = 0;
+  EXPECT_NE(reason(c).find("cpg_digit_bits"), std::string::npos) << reason(c);
+  c = UnitConfig{};
+  c.cpg = {3, 4};
+  EXPECT_EQ(reason(c), "");
+  c.cpg_mapping = CpgMapping::Gpe;
+  EXPECT_NE(reason(c).find("cpg_mapping gpe"), std::string::npos) << reason(c);
+}
+
 TEST(UnitTimeline, TwoBlocksFourContexts) {
   // N = 2, V = 4: the three points of L = 1 are allocated in C+2, C+3, C+4. v0 issues 7
   // cycles (C+3..C+9: ops 0-1, 2-3, 4-5, 6-7, 8-9, 10-11, 12-13 — the dependences are met
