@@ -52,6 +52,18 @@ json other_value(const ParamSpec& p) {
 }
 
 // The InputError of applying and validating `j`, or "" when it is accepted.
+// The other parameters a value needs to be valid: cpg_digit_bits may not exceed the coordinate
+// width, so its upper bound (32) is tried with W = 32.
+json context_for(const ParamSpec& p) {
+  if (std::string_view(p.key) == "cpg_digit_bits") return {{"coord_int_bits", 6}, {"coord_frac_bits", 25}};
+  return json::object();
+}
+
+json with_context(const ParamSpec& p, json j) {
+  j.update(context_for(p));
+  return j;
+}
+
 std::string error_of(const json& j) {
   UnitConfig cfg;
   try {
@@ -85,7 +97,7 @@ TEST(Params, EveryParameterRoundTripsJson) {
   for (const ParamSpec& p : unit_params()) {
     SCOPED_TRACE(p.key);
     UnitConfig cfg;
-    apply_json(cfg, json{{p.key, other_value(p)}}, "test");
+    apply_json(cfg, with_context(p, json{{p.key, other_value(p)}}), "test");
     EXPECT_NO_THROW(cfg.validate("test"));
     EXPECT_FALSE(cfg == UnitConfig{});
     EXPECT_EQ(to_json(cfg)[p.key], other_value(p));
@@ -100,8 +112,8 @@ TEST(Params, RangeBoundsAcceptedAndValuesOutsideRejectedNamingTheKey) {
     SCOPED_TRACE(p.key);
     if (p.type == ParamType::Int) {
       const auto lo = static_cast<long long>(p.min), hi = static_cast<long long>(p.max);
-      EXPECT_EQ(error_of({{p.key, lo}}), "");
-      EXPECT_EQ(error_of({{p.key, hi}}), "");
+      EXPECT_EQ(error_of(with_context(p, {{p.key, lo}})), "");
+      EXPECT_EQ(error_of(with_context(p, {{p.key, hi}})), "");
       for (long long bad : {lo - 1, hi + 1}) {
         const std::string e = error_of({{p.key, bad}});
         EXPECT_EQ(e, "cfg.json: " + std::string(p.key) + ": value " + std::to_string(bad) + " out of range [" +
@@ -172,9 +184,20 @@ TEST(ParamsCli, EveryParameterHasAFlag) {
     const json v = other_value(p);
     const std::string text = v.is_string() ? v.get<std::string>() : v.dump();
     UnitConfig expected;
-    apply_json(expected, json{{p.key, v}}, "test");
-    EXPECT_EQ(parse({p.flag, text}), expected);
-    for (const std::string& alias : alias_list(p)) EXPECT_EQ(parse({alias, text}), expected);
+    apply_json(expected, with_context(p, json{{p.key, v}}), "test");
+    std::vector<std::string> context;
+    const json needs = context_for(p);
+    for (const auto& [key, value] : needs.items()) {
+      context.push_back(find_param(key)->flag);
+      context.push_back(value.dump());
+    }
+    auto args = [&](const std::string& flag) {
+      std::vector<std::string> a{flag, text};
+      a.insert(a.end(), context.begin(), context.end());
+      return a;
+    };
+    EXPECT_EQ(parse(args(p.flag)), expected);
+    for (const std::string& alias : alias_list(p)) EXPECT_EQ(parse(args(alias)), expected);
   }
 }
 
@@ -231,7 +254,8 @@ TEST(Schema, BinaryPrintsValidJsonListingEveryParameter) {
   EXPECT_EQ(listed, keys);
   EXPECT_EQ(s["rtl_parameters"]["IntBlocks"], "int_blocks");
   EXPECT_EQ(s["rtl_parameters"]["Contexts"], "te_contexts");
-  EXPECT_EQ(s["rtl_parameters"].size(), 8u);
+  EXPECT_EQ(s["rtl_parameters"]["CpgDigitBits"], "cpg_digit_bits");
+  EXPECT_EQ(s["rtl_parameters"].size(), 10u);
 }
 
 // A Verilated variant gives only the parameters that differ from tess_pkg's defaults
@@ -249,7 +273,7 @@ TEST(Schema, RtlPackageDefaultsAreTheConfigDefaults) {
     EXPECT_EQ(json(std::stoi(m[1].str())), p.get(UnitConfig{})) << p.rtl;
     ++checked;
   }
-  EXPECT_EQ(checked, 8);
+  EXPECT_EQ(checked, 10);
 }
 
 TEST(Schema, IntOpsAndStatistics) {
