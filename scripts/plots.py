@@ -460,6 +460,36 @@ def cpg_label(v):
 GPE_RATE_SHARE = 0.97
 
 
+def fig_cpg_pareto(costed, variants, pL, Ks, out):
+    """Throughput against the unit's transistors over CPG variant and N, with the Pareto front."""
+    fig, axes = plt.subplots(len(Ks), len(pL), figsize=(4 * len(pL), 3.6 * len(Ks)), squeeze=False)
+    front_rows = []
+    for i, K in enumerate(Ks):
+        for j, L in enumerate(pL):
+            ax = axes[i][j]
+            pts = [(r["cost_unit_transistors"] / 1e6, r["throughput"],
+                    f"{'S' if cpg_variant(r) == (1, 1) else f'{cpg_variant(r)[0]}x{cpg_variant(r)[1]}'} N{r['int_blocks']}", r)
+                   for r in costed if r["gpe_cycles"] == K and r["tess_factor"] == L and r["normals"] == "quadratic"]
+            front = pareto(pts)
+            for v_i, v in enumerate(variants):
+                sel = [p for p in pts if cpg_variant(p[3]) == v]
+                ax.plot([p[0] for p in sel], [p[1] for p in sel], "o", ms=3, color=f"C{v_i % 10}", label=cpg_label(v))
+            ax.step([p[0] for p in front], [p[1] for p in front], "-", where="post", color="k", lw=0.8)
+            for p in front:
+                ax.annotate(p[2], (p[0], p[1]), textcoords="offset points", xytext=(3, -8), fontsize=6)
+                front_rows.append([K, L, p[2], fmt(p[0], 4), fmt(p[1], 4), fmt(p[1] / p[0], 4)])
+            ax.axhline(1.0 / K, ls="--", color="0.4", lw=0.8)
+            ax.set_title(f"quadratic, L = {L}, K = {K} (dashed: 1/K)", fontsize=8)
+            ax.set_xlabel("whole unit, million transistors")
+            ax.set_ylabel("vertices / cycle")
+    axes[0][0].legend(fontsize=6)
+    fig.suptitle("Throughput against the unit's transistors over CPG variant × N (line: Pareto front; "
+                 "label Ec×r or S for the sequential CPG)", fontsize=9)
+    out.save(fig, "cpg_pareto")
+    out.table("Pareto front over CPG variant and N (quadratic normals)",
+              ["K", "L", "configuration", "unit Mtr", "vertices/cycle", "vertices/cycle/Mtr"], front_rows)
+
+
 def fig_cpg_variants(rows, out):
     """The CPG variants (grids cpg, cpg_fast): cycles per vertex against L, the cheapest unit
     that keeps up with the GPE at each L, throughput against cost, and the fastest unit."""
@@ -490,6 +520,9 @@ def fig_cpg_variants(rows, out):
                      fontsize=8)
         ax.set_xscale("log", base=2)
         ax.set_yscale("log")
+        ax.yaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.set_yticks([t for t in (2, 4, 8, 16, 32, 64) if t <= max(r["cycles_per_vertex"] for r in g) * 1.5])
         ax.set_xticks(Ls)
         ax.set_xticklabels([str(x) for x in Ls])
         ax.set_ylabel("cycles / vertex")
@@ -526,10 +559,11 @@ def fig_cpg_variants(rows, out):
     for K in distinct(g, "gpe_cycles"):
         for mode in distinct(g, "normals"):
             for L in Ls:
-                pts = [r for r in costed if r["gpe_cycles"] == K and r["normals"] == mode and r["tess_factor"] == L]
+                pts = [r for r in g if r["gpe_cycles"] == K and r["normals"] == mode and r["tess_factor"] == L]
                 ok = [r for r in pts if r["throughput"] >= GPE_RATE_SHARE / K]
                 seq = [r for r in ok if cpg_variant(r) == (1, 1)]
-                best = min(ok, key=lambda r: r["cost_unit_transistors"]) if ok else None
+                ok_costed = [r for r in ok if r.get("cost_unit_transistors") is not None]
+                best = min(ok_costed, key=lambda r: r["cost_unit_transistors"]) if ok_costed else None
                 fastest = max(pts, key=lambda r: r["throughput"]) if pts else None
                 table.append([K, mode, L,
                               f"{cpg_label(cpg_variant(best))}, N = {best['int_blocks']}" if best else "none",
@@ -546,34 +580,10 @@ def fig_cpg_variants(rows, out):
     # Throughput against cost, with the Pareto front, at K = 8 and K = 4 for small L.
     pL = [L for L in (2, 4, 8) if L in Ls]
     Ks = [K for K in (8, 4) if K in distinct(g, "gpe_cycles")]
-    if not costed:
-        return out.skip("CPG variants: throughput vs transistors", "no costed rows in grid 'cpg'")
-    fig, axes = plt.subplots(len(Ks), len(pL), figsize=(4 * len(pL), 3.6 * len(Ks)), squeeze=False)
-    front_rows = []
-    for i, K in enumerate(Ks):
-        for j, L in enumerate(pL):
-            ax = axes[i][j]
-            pts = [(r["cost_unit_transistors"] / 1e6, r["throughput"],
-                    f"{'S' if cpg_variant(r) == (1, 1) else f'{cpg_variant(r)[0]}x{cpg_variant(r)[1]}'} N{r['int_blocks']}", r)
-                   for r in costed if r["gpe_cycles"] == K and r["tess_factor"] == L and r["normals"] == "quadratic"]
-            front = pareto(pts)
-            for v_i, v in enumerate(variants):
-                sel = [p for p in pts if cpg_variant(p[3]) == v]
-                ax.plot([p[0] for p in sel], [p[1] for p in sel], "o", ms=3, color=f"C{v_i % 10}", label=cpg_label(v))
-            ax.step([p[0] for p in front], [p[1] for p in front], "-", where="post", color="k", lw=0.8)
-            for p in front:
-                ax.annotate(p[2], (p[0], p[1]), textcoords="offset points", xytext=(3, -8), fontsize=6)
-                front_rows.append([K, L, p[2], fmt(p[0], 4), fmt(p[1], 4), fmt(p[1] / p[0], 4)])
-            ax.axhline(1.0 / K, ls="--", color="0.4", lw=0.8)
-            ax.set_title(f"quadratic, L = {L}, K = {K} (dashed: 1/K)", fontsize=8)
-            ax.set_xlabel("whole unit, million transistors")
-            ax.set_ylabel("vertices / cycle")
-    axes[0][0].legend(fontsize=6)
-    fig.suptitle("Throughput against the unit's transistors over CPG variant × N (line: Pareto front; "
-                 "label Ec×r or S for the sequential CPG)", fontsize=9)
-    out.save(fig, "cpg_pareto")
-    out.table("Pareto front over CPG variant and N (quadratic normals)",
-              ["K", "L", "configuration", "unit Mtr", "vertices/cycle", "vertices/cycle/Mtr"], front_rows)
+    if costed:
+        fig_cpg_pareto(costed, variants, pL, Ks, out)
+    else:
+        out.skip("CPG variants: throughput vs transistors", "no costed rows in grid 'cpg'")
 
     # A fast GPE (K = 1): the fastest units.
     f = in_grid(rows, "cpg_fast")
@@ -585,7 +595,7 @@ def fig_cpg_variants(rows, out):
                              key=lambda r: (r["cpg_digit_bits"], r["int_blocks"]))
                 best = max(pts, key=lambda r: r["throughput"])
                 table.append([mode, L] + [fmt(r["throughput"], 4) for r in pts] +
-                             [f"{cpg_label(cpg_variant(best))}, N = {best['int_blocks']}: {best['bottleneck']}"])
+                             [f"{cpg_label(cpg_variant(best))}, N = {best['int_blocks']}: {best['bottleneck'].split(':')[0]}"])
         cols = [f"Ec {r['cpg_lanes']} r {r['cpg_digit_bits']} N {r['int_blocks']}"
                 for r in sorted((r for r in f if r["normals"] == distinct(f, "normals")[0] and
                                  r["tess_factor"] == distinct(f, "tess_factor")[0]),

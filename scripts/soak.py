@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Soak test of the lock-step co-simulation: many seeds, every RTL build N = 1..4, every normal
-mode the unit implements, factors 1..16, random and constant geometry-engine stalls, real meshes
+"""Soak test of the lock-step co-simulation: many seeds, every fault-free RTL build (N = 1..4 with
+the sequential CPG, and the CPG variants), every normal mode the unit implements, factors 1..16, random and constant geometry-engine stalls, real meshes
 (uniform and adaptive factors) and random triangle streams (with degenerate ones), on every core.
 Prints each job as it ends and the totals: vertices, cycles, seeds, wall time, mismatches.
 
@@ -23,12 +23,24 @@ MODELS = Path("/usr/share/assimp/models")
 MESHES = [MODELS / "PLY/Wuson.ply", MODELS / "STL/sphereWithHole.stl", MODELS / "OBJ/spider.obj"]
 MODES = ["quadratic", "reflect", "linear"]
 RAN = re.compile(r"ran (\d+) cycles, (\d+) triangles in, (\d+) vertices out")
+# The RTL builds (docs/rtl.md), by the hardware flags that select them.
+BUILDS = [
+    ("n1", ["--int-blocks", "1"]),
+    ("n2", ["--int-blocks", "2"]),
+    ("n3", ["--int-blocks", "3"]),
+    ("n4", ["--int-blocks", "4"]),
+    ("n1_r4", ["--int-blocks", "1", "--cpg-digit-bits", "4"]),
+    ("n2_l3r8", ["--int-blocks", "2", "--cpg-lanes", "3", "--cpg-digit-bits", "8"]),
+    ("n3_lat3", ["--int-blocks", "3", "--int-latency", "3", "--te-contexts", "6", "--cpg-lanes", "3",
+                 "--cpg-digit-bits", "5"]),
+    ("n4_l3r24", ["--int-blocks", "4", "--cpg-lanes", "3", "--cpg-digit-bits", "24"]),
+]
 
 
 def job_args(rng, index):
     """One co-simulation job: a stream, a configuration and a run of consecutive seeds."""
-    n = 1 + index % 4  # every build equally often
-    args = ["cosim", "--int-blocks", str(n), "--normals", rng.choice(MODES),
+    build, hardware = BUILDS[index % len(BUILDS)]  # every build equally often
+    args = ["cosim", "--variant", build] + hardware + ["--normals", rng.choice(MODES),
             "--gpe-cycles", str(rng.choice([1, 2, 4, 7, 8, 12])),
             "--gpe-stall-prob", str(rng.choice([0.0, 0.0, 0.1, 0.3, 0.6])),
             "--seed", str(rng.randrange(1, 2**31)), "--seeds", "4"]
@@ -93,8 +105,9 @@ def main(argv):
                 totals["mismatches"] += r["fails"]
                 totals["cycles"] += sum(c for c, _, _ in r["runs"])
                 totals["vertices"] += sum(v for _, _, v in r["runs"])
-                builds.add(job[job.index("--int-blocks") + 1])
-                print(f"[{time.monotonic() - start:7.1f}s] N={job[job.index('--int-blocks') + 1]} "
+                build = job[job.index("--variant") + 1]
+                builds.add(build)
+                print(f"[{time.monotonic() - start:7.1f}s] {build:8s} "
                       f"{job[job.index('--normals') + 1]:9s} {what:28s} {r['passes']} pass {r['fails']} fail "
                       f"({r['seconds']:.1f}s)  total {totals['vertices']:,} vertices", flush=True)
                 if r["fails"]:
@@ -104,7 +117,7 @@ def main(argv):
                     submit()
     wall = time.monotonic() - start
     print(f"soak: {totals['vertices']:,} vertices, {totals['cycles']:,} cycles, {totals['seeds']} seeds in "
-          f"{totals['jobs']} jobs (N = {', '.join(sorted(builds))}), {wall:.0f} s wall on {args.jobs} workers, "
+          f"{totals['jobs']} jobs (builds {', '.join(sorted(builds))}), {wall:.0f} s wall on {args.jobs} workers, "
           f"{totals['mismatches']} mismatches")
     return 0 if totals["mismatches"] == 0 else 1
 
