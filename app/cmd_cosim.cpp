@@ -1,5 +1,7 @@
 // tessim cosim: lock-step co-simulation of the Verilated RTL against the cycle model.
 #include <algorithm>
+#include <charconv>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +16,7 @@
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"
 #include "cosim/coverage.hpp"
+#include "cosim/wave.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "app/commands.hpp"
 #include "app/config_flags.hpp"
@@ -34,11 +37,19 @@ struct CosimArgs {
   std::string variant;
   bool verif = false;
   std::string wave;
-  int wave_window = 200;
+  std::string wave_window = "200";  // N cycles before a divergence, or START:END
   AdaptiveOptions adaptive;
   std::string coverage;                 // functional coverage file (accumulated)
   std::vector<std::uint64_t> reset_at;  // cycles of a mid-stream reset
 };
+
+// A decimal number of cycles, the whole text and nothing else.
+std::optional<std::uint64_t> parse_cycles(const std::string& text) {
+  std::uint64_t value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
 
 std::string known_builds() {
   std::string known;
@@ -72,10 +83,30 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
 int run(const CosimArgs& a, const ConfigFlags& flags) {
   if (a.seeds < 1 || a.seeds > 1000000)
     throw InputError("command line", "--seeds", std::to_string(a.seeds) + " is outside 1..1000000");
-  if (a.wave_window < 1 || a.wave_window > 10000000)
-    throw InputError("command line", "--wave-window", std::to_string(a.wave_window) + " is outside 1..10000000");
-  // The waveform is written only on a divergence, long after the start: check its path now.
-  if (!a.wave.empty()) check_output_paths({{"--wave", a.wave}});
+  // --wave-window: N cycles before a divergence, or an explicit START:END recorded in any run.
+  int wave_before = 200;
+  std::optional<cosim::WaveWindow> wave_cycles;
+  if (const std::size_t colon = a.wave_window.find(':'); colon != std::string::npos) {
+    const auto from = parse_cycles(a.wave_window.substr(0, colon));
+    const auto to = parse_cycles(a.wave_window.substr(colon + 1));
+    if (!from || !to || *to < *from)
+      throw InputError("command line", "--wave-window",
+                       "'" + a.wave_window + "' is not START:END with START <= END (cycles)");
+    if (a.seeds != 1)
+      throw InputError("command line", "--wave-window", "an explicit window records one run: use --seeds 1");
+    wave_cycles = cosim::WaveWindow{*from, *to};
+  } else {
+    const auto n = parse_cycles(a.wave_window);
+    if (!n || *n < 1 || *n > 10000000)
+      throw InputError("command line", "--wave-window",
+                       "'" + a.wave_window + "' is neither a cycle count in 1..10000000 nor START:END");
+    wave_before = static_cast<int>(*n);
+  }
+  // The waveform is written only after the run: check its format and paths now.
+  if (!a.wave.empty()) {
+    cosim::check_wave_path(a.wave);
+    check_output_paths({{"--wave", a.wave}, {"--wave", cosim::gtkw_path(a.wave).string()}});
+  }
   const sim::UnitConfig cfg = flags.config();  // defaults, --config, the flags given
   const std::string variant = choose_variant(a, flags, cfg);
   const std::optional<TessSettings> adaptive = adaptive_workload(a.adaptive, "cosim");
@@ -91,6 +122,7 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     source = std::to_string(a.random_count) + " random triangles";
   } else {
     const Mesh mesh = load_mesh(a.mesh);
+    warn_tags_ignored(mesh, "cosim");
     const sim::HostScaling scaling = sim::host_scaling(mesh);
     const std::vector<std::uint8_t> factors = adaptive ? uniform_factors_covering(*adaptive, mesh) : std::vector<std::uint8_t>{};
     stream.reserve(mesh.triangle_count());
@@ -121,7 +153,8 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   if (coverage_out) opts.coverage = &coverage;
   opts.variant = variant;
   opts.wave = a.wave;
-  opts.wave_window = a.wave_window;
+  opts.wave_window = wave_before;
+  opts.wave_cycles = wave_cycles;
   int failures = 0, run = 0;
   std::uint64_t vertices = 0, cycles = 0;
   for (int s = 0; s < a.seeds; ++s) {
@@ -180,9 +213,12 @@ void register_cosim(CLI::App& app) {
                   "Coverage)");
   cmd->add_option("--reset-at", args->reset_at, "Reset both implementations at these cycles (comma-separated)")
       ->delimiter(',');
-  cmd->add_option("--wave", args->wave, "On divergence, write an FST waveform of the window before it");
-  cmd->add_option("--wave-window", args->wave_window, "Cycles of waveform before the divergence (1..10000000)")
-      ->transform(number_check<int>("command line", "--wave-window", "1..10000000"));
+  cmd->add_option("--wave", args->wave,
+                  "Write a waveform (.fst, or .vcd through gtkwave's fst2vcd) and a gtkwave layout (.gtkw) beside "
+                  "it: the cycles before a divergence, or the --wave-window START:END of any run");
+  cmd->add_option("--wave-window", args->wave_window,
+                  "N: the N cycles before a divergence (1..10000000); START:END: these cycles, passing or not")
+      ->capture_default_str();
   cmd->callback([args, flags]() {
     const int status = run(*args, *flags);
     if (status != 0) throw CLI::RuntimeError(status);

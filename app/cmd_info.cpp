@@ -1,4 +1,5 @@
-// tessim info: what a mesh file contains once loaded (welded vertices, normals, degeneracies).
+// tessim info: what a mesh file contains once loaded (welded vertices, normals, degeneracies,
+// scalar tags).
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -9,6 +10,7 @@
 #include "app/commands.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
+#include "model/st_mesh.hpp"
 #include "sim/host.hpp"
 
 namespace tessim::app {
@@ -28,6 +30,7 @@ void run_info(const InfoArgs& args) {
   const Mesh mesh = load_mesh(args.mesh);
   const MeshStats stats = mesh_stats(mesh);
   const glm::dvec3 lo = stats.bbox.lo, hi = stats.bbox.hi;
+  const TagStats tags = tag_stats(mesh);
 
   if (args.json) {
     nlohmann::json j;
@@ -42,6 +45,16 @@ void run_info(const InfoArgs& args) {
     j["degenerate_triangles"] = stats.degenerate_triangles;
     j["zero_length_edges"] = stats.zero_length_edges;
     j["normal_fallbacks"] = stats.normal_fallbacks;
+    j["tags"] = {{"present", tags.present},
+                 {"tagged", tags.tagged},
+                 {"crease", tags.crease},
+                 {"softened", tags.softened},
+                 {"corner_like", tags.corner_like},
+                 {"tagged_edges", tags.tagged_edges},
+                 {"sigma", {tags.sigma_min, tags.sigma_max}},
+                 {"theta", {tags.theta_min, tags.theta_max}},
+                 {"beta", {tags.beta_min, tags.beta_max}},
+                 {"delta_length", {tags.delta_min, tags.delta_max}}};
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -57,13 +70,26 @@ void run_info(const InfoArgs& args) {
   std::printf("zero-length edges     %zu\n", stats.zero_length_edges);
   if (!mesh.normals_from_file)
     std::printf("normal fallbacks      %zu (vertices with no defined normal, given +Z)\n", stats.normal_fallbacks);
+  if (!tags.present) {
+    std::printf("tags                  none (plain PN triangles)\n");
+    return;
+  }
+  std::printf("tagged vertices       %zu (crease vector non-zero; %zu edges between two of them)\n", tags.tagged,
+              tags.tagged_edges);
+  std::printf("crease vertices       %zu (tagged, sigma > 0), %zu softened (tagged, sigma = 0)\n", tags.crease,
+              tags.softened);
+  std::printf("corner-like vertices  %zu (untagged, theta > 0)\n", tags.corner_like);
+  std::printf("sigma                 %.9g .. %.9g (tagged vertices)\n", tags.sigma_min, tags.sigma_max);
+  std::printf("theta                 %.9g .. %.9g\n", tags.theta_min, tags.theta_max);
+  std::printf("beta                  %.9g .. %.9g (tagged vertices)\n", tags.beta_min, tags.beta_max);
+  std::printf("|crease vector|       %.9g .. %.9g (tagged vertices)\n", tags.delta_min, tags.delta_max);
 }
 
 }  // namespace
 
 void register_info(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
-  CLI::App* cmd = app.add_subcommand("info", "Print what a mesh contains once loaded: counts, bounds, normals, degeneracies");
+  CLI::App* cmd = app.add_subcommand("info", "Print what a mesh contains once loaded: counts, bounds, normals, degeneracies, tags");
   cmd->add_option("mesh", args->mesh, "Input mesh (OBJ, PLY, STL, OFF, ... via Assimp)")->required();
   cmd->add_flag("--json", args->json, "Machine-readable output");
   cmd->callback([args] { run_info(*args); });

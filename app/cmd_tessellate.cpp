@@ -1,4 +1,5 @@
 // tessim tessellate: the float64 reference tessellation of a whole mesh, streamed to PLY or OBJ.
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <memory>
@@ -57,6 +58,10 @@ void run_tessellate(const TessellateArgs& args) {
               std::string(to_string(mode)).c_str());
   if (summary.culled > 0)
     std::printf("%" PRIu64 " patches culled (a factor <= 0 or NaN)\n", summary.culled);
+  if (mesh.has_tags())
+    std::printf("scalar-tagged PN: %zu tagged vertices (docs/stpn.md)\n",
+                static_cast<std::size_t>(std::count_if(mesh.tags.begin(), mesh.tags.end(),
+                                                       [](const VertexTags& t) { return t.tagged(); })));
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "model/error.hpp"
 
 #include "model/factors.hpp"
+#include "model/mesh.hpp"
 #include "model/normal_mode.hpp"
 #include "sim/config.hpp"
 
@@ -126,6 +127,10 @@ struct OutputPath {
 };
 void check_output_paths(const std::vector<OutputPath>& outputs);
 
+// The cycle model and the RTL compute plain PN triangles: a scalar-tagged mesh's tags do not
+// reach them. Prints a warning saying so when `mesh` has tags that change anything.
+void warn_tags_ignored(const Mesh& mesh, const char* command);
+
 void register_info(CLI::App& app);
 void register_tessellate(CLI::App& app);
 void register_render(CLI::App& app);
@@ -133,6 +138,7 @@ void register_sim(CLI::App& app);
 void register_bench(CLI::App& app);
 void register_schema(CLI::App& app);
 void register_pattern(CLI::App& app);
+void register_stpn_import(CLI::App& app);
 #ifdef TESSIM_HAVE_COSIM
 void register_cosim(CLI::App& app);
 void register_rtlbench(CLI::App& app);

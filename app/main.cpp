@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   tessim::app::register_bench(app);
   tessim::app::register_schema(app);
   tessim::app::register_pattern(app);
+  tessim::app::register_stpn_import(app);
 #ifdef TESSIM_HAVE_COSIM
   tessim::app::register_cosim(app);
   tessim::app::register_rtlbench(app);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <optional>
@@ -26,6 +27,15 @@ NormalMode parse_normals_option(const char* command, const std::string& text) {
   if (!mode)
     throw InputError(command, "--normals", "'" + text + "' is not one of quadratic, reflect, linear, derivative");
   return *mode;
+}
+
+void warn_tags_ignored(const Mesh& mesh, const char* command) {
+  const auto acting = std::count_if(mesh.tags.begin(), mesh.tags.end(), [](const VertexTags& t) { return !t.neutral(); });
+  if (acting == 0) return;
+  std::fprintf(stderr,
+               "tessim: warning: %s: tags: %td vertices carry scalar tags, which tessim %s ignores: the unit "
+               "computes plain PN triangles (tessellate and render use the tags, docs/stpn.md)\n",
+               mesh.source.c_str(), acting, command);
 }
 
 void check_output_paths(const std::vector<OutputPath>& outputs) {

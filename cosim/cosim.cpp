@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cosim/checkers.hpp"
+#include "cosim/wave.hpp"
 #include "model/error.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
@@ -21,15 +22,15 @@ namespace tessim::cosim {
 namespace {
 
 // The lock-step loop, ending at the end of the stream, at the first divergence or before cycle
-// `stop_at`. With `wave_from` set it is the replay of a failing run: outputs are not compared
-// and the RTL's waveform is recorded from that cycle on.
+// `stop_at`. Without `checking` it is the replay of a failing run: outputs are not compared.
+// With `record` the RTL's waveform (opened by the caller) records those cycles.
 struct LockstepRun {
   CosimReport report;
   std::uint64_t expected_vertices = 0;
 };
 
 LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOptions& opts,
-                     rtl::RtlUnit& rtl, std::optional<std::uint64_t> wave_from,
+                     rtl::RtlUnit& rtl, bool checking, std::optional<WaveWindow> record,
                      std::uint64_t stop_at) {
   LockstepRun run;
   CosimReport& rep = run.report;
@@ -45,7 +46,6 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   rtl.set_mode(opts.unit.normals);
 
   // The checkers (cosim/checkers.hpp). A replay of a failing run only records the waveform.
-  const bool checking = !wave_from.has_value();
   const OutputChecker outputs;
   const CounterChecker counters(opts.unit.int_blocks);
   ProgressChecker progress(opts.hang_cycles);
@@ -87,7 +87,9 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
       stopped_early = true;
       break;
     }
-    if (wave_from && cycle == *wave_from) rtl.set_wave_enabled(true);
+    if (record && cycle == record->from) rtl.set_wave_enabled(true);
+    if (record && record->to != std::numeric_limits<std::uint64_t>::max() && cycle == record->to + 1)
+      rtl.set_wave_enabled(false);
     if (next_reset < resets.size() && cycle == resets[next_reset]) {
       // Mid-stream reset of both implementations: the stream starts again from the beginning.
       ++next_reset;
@@ -189,17 +191,30 @@ CosimReport run_cosim_until(const std::vector<sim::TriangleFx>& stream, const Co
   auto rtl = rtl::make_rtl_unit(opts.variant, opts.seed);
   rtl::check_config(*rtl, opts.unit);  // throws InputError naming the first parameter that differs
 
-  LockstepRun run = lockstep(stream, opts, *rtl, std::nullopt, stop_before);
+  // An explicit window is recorded in the run itself, passing or not.
+  const std::optional<WaveWindow> window = opts.wave.empty() ? std::nullopt : opts.wave_cycles;
+  if (window) {
+    rtl->open_wave(wave_recording_path(opts.wave));
+    rtl->set_wave_enabled(false);
+  }
+  LockstepRun run = lockstep(stream, opts, *rtl, true, window, stop_before);
   CosimReport rep = std::move(run.report);
-  if (rep.divergence && !opts.wave.empty()) {
+  if (window) {
+    rtl->close_wave();
+    finish_wave(opts.wave, rtl->config(), window->from,
+                rep.divergence ? std::optional<std::uint64_t>(rep.divergence->cycle) : std::nullopt);
+    rep.wave = opts.wave;
+  } else if (rep.divergence && !opts.wave.empty()) {
     // Replay from reset with the waveform recording the window before the divergence.
     auto replay = rtl::make_rtl_unit(opts.variant, opts.seed);
-    replay->open_wave(opts.wave);
+    replay->open_wave(wave_recording_path(opts.wave));
     replay->set_wave_enabled(false);
     const std::uint64_t c = rep.divergence->cycle;
     const std::uint64_t from = c > static_cast<std::uint64_t>(opts.wave_window) ? c - opts.wave_window : 0;
-    lockstep(stream, opts, *replay, from, c + 2);
+    // A few cycles after it too, so that the divergent value shows in the viewer.
+    lockstep(stream, opts, *replay, false, WaveWindow{from, c + 5}, c + 6);
     replay->close_wave();
+    finish_wave(opts.wave, replay->config(), from, c);
     rep.wave = opts.wave;
   }
   return rep;
@@ -223,9 +238,14 @@ std::string format_report(const CosimReport& r, const CosimOptions& o) {
       os << "    last transactions before it:\n";
       for (const auto& s : d.recent) os << "      " << s << "\n";
     }
-    if (!r.wave.empty()) os << "    waveform of the cycles before it: " << r.wave.string() << "\n";
+    if (!r.wave.empty())
+      os << "    waveform of " << (o.wave_cycles ? "the requested cycles" : "the cycles before it") << ": "
+         << r.wave.string() << " (gtkwave " << gtkw_path(r.wave).string() << ")\n";
   } else {
     os << "  outputs: bit- and cycle-identical on every cycle\n";
+    if (!r.wave.empty() && o.wave_cycles)
+      os << "  waveform of cycles " << o.wave_cycles->from << ".." << std::min(o.wave_cycles->to, r.cycles) << ": "
+         << r.wave.string() << " (gtkwave " << gtkw_path(r.wave).string() << ")\n";
     os << "  counters: " << (r.counters_match ? "identical" : "DIFFER") << " (cycles " << r.rtl_counters.cycles
        << ", TE busy " << r.rtl_counters.te_busy << ", CPG busy " << r.rtl_counters.cpg_busy << ")\n";
   }

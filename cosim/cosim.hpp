@@ -2,8 +2,9 @@
 // (rtl::RtlUnit): the same triangle stream and the same seeded geometry-engine backpressure
 // drive both; every cycle their outputs are compared bit for bit, and every vertex the GPE
 // accepts is checked against the float reference. The first divergence stops the run; the
-// failing run is then replayed from reset with the RTL's FST waveform recording the window
-// before it, so passing runs pay nothing for waves (docs/verification.md).
+// failing run is then replayed from reset with the RTL's waveform recording the window before
+// it, so passing runs pay nothing for waves; an explicit window of cycles is recorded in the run
+// itself, passing or failing (docs/verification.md).
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "cosim/coverage.hpp"
+#include "cosim/wave.hpp"
 #include "sim/config.hpp"
 #include "sim/cpg.hpp"
 #include "sim/gpe.hpp"
@@ -27,7 +29,8 @@ struct CosimOptions {
   std::uint64_t seed = 1;          // GPE backpressure and the RTL's X randomisation
   int history = 8;                 // transactions printed before a divergence
   int wave_window = 200;           // cycles of waveform before the divergence
-  std::filesystem::path wave;      // FST file written on divergence (empty: none)
+  std::filesystem::path wave;      // .fst or .vcd written on divergence (empty: none), .gtkw beside it
+  std::optional<WaveWindow> wave_cycles;  // instead: these cycles, recorded in the run itself
   std::vector<std::uint64_t> reset_at;  // cycles at which both are reset mid-stream
   std::uint64_t hang_cycles = 100000;   // cycles without any transfer that count as a hang
   bool check_reference = true;     // compare each vertex with the float reference

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "model/vertex_tags.hpp"
+
 namespace tessim {
 
 struct Mesh {
@@ -17,9 +19,13 @@ struct Mesh {
   std::vector<glm::dvec3> normals;     // unit length, same size as positions
   std::vector<glm::uvec3> triangles;   // indices into positions; winding as in the file
   bool normals_from_file = false;      // false: computed (area- and angle-weighted)
+  // Scalar tags (docs/stpn.md): empty for an untagged mesh, else one per position. Only the
+  // float reference's tessellation uses them; load_mesh checks the tag rules.
+  std::vector<VertexTags> tags;
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return triangles.size(); }
+  bool has_tags() const { return !tags.empty(); }
 };
 
 struct BoundingBox {

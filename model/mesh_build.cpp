@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <unordered_map>
 #include <utility>
 
@@ -31,6 +32,14 @@ struct WeldKeyHash {
   }
 };
 
+// "(Δ = (x, y, z), σ = s, θ = t, β = b)" for messages.
+std::string describe_tags(const VertexTags& t) {
+  std::ostringstream s;
+  s.precision(9);
+  s << "(Δ = " << format_vec(t.delta) << ", σ = " << t.sigma << ", θ = " << t.theta << ", β = " << t.beta << ")";
+  return s.str();
+}
+
 WeldKey weld_key(const glm::dvec3& p) {
   // + 0.0 turns -0.0 into +0.0 so that both weld together.
   return {std::bit_cast<std::uint64_t>(p.x + 0.0), std::bit_cast<std::uint64_t>(p.y + 0.0),
@@ -39,8 +48,13 @@ WeldKey weld_key(const glm::dvec3& p) {
 
 }  // namespace
 
-Mesh weld(const Mesh& mesh, const VertexNamer& name) {
+Mesh weld(const Mesh& mesh, const VertexNamer& name, std::vector<std::uint32_t>* first_copies) {
   const std::string file = mesh.source.empty() ? std::string("mesh") : mesh.source;
+  auto vertex_name = [&](std::uint32_t v) { return name ? name(v) : "vertex " + std::to_string(v); };
+  const bool tagged = !mesh.tags.empty();
+  if (tagged && mesh.tags.size() != mesh.positions.size())
+    throw InputError(file, "tags",
+                     std::to_string(mesh.tags.size()) + " tag sets for " + std::to_string(mesh.positions.size()) + " vertices");
   Mesh out;
   out.source = mesh.source;
   std::unordered_map<WeldKey, std::uint32_t, WeldKeyHash> welded;
@@ -58,6 +72,13 @@ Mesh weld(const Mesh& mesh, const VertexNamer& name) {
     if (inserted) {
       out.positions.push_back(p);
       origin.push_back(static_cast<std::uint32_t>(v));
+      if (tagged) out.tags.push_back(mesh.tags[v]);
+    } else if (tagged && !(mesh.tags[v] == out.tags[it->second])) {
+      const std::uint32_t first = origin[it->second];
+      throw InputError(file, vertex_name(static_cast<std::uint32_t>(v)),
+                       "its tags " + describe_tags(mesh.tags[v]) + " differ from those of " + vertex_name(first) + " " +
+                           describe_tags(mesh.tags[first]) + ", with which it is welded at " + format_vec(p) +
+                           " (copies of a vertex must carry the same tags)");
     }
     remap[v] = it->second;
     if (mesh.normals_from_file) {
@@ -70,6 +91,7 @@ Mesh weld(const Mesh& mesh, const VertexNamer& name) {
   }
   out.triangles.reserve(mesh.triangles.size());
   for (const glm::uvec3& t : mesh.triangles) out.triangles.emplace_back(remap[t[0]], remap[t[1]], remap[t[2]]);
+  if (first_copies) *first_copies = origin;
   if (!mesh.normals_from_file) return out;
 
   // Average the distinct normals at each position.
@@ -87,7 +109,7 @@ Mesh weld(const Mesh& mesh, const VertexNamer& name) {
     ++copies[v];
   }
   for (std::size_t v = 0; v < out.positions.size(); ++v) {
-    auto element = [&] { return name ? name(origin[v]) : "vertex " + std::to_string(origin[v]); };
+    auto element = [&] { return vertex_name(origin[v]); };
     if (copies[v] == 0)
       throw InputError(file, element(), "normal in the file has zero length (at " + format_vec(out.positions[v]) + ")");
     const double length = glm::length(out.normals[v]);

@@ -25,7 +25,10 @@ using VertexNamer = std::function<std::string(std::uint32_t vertex)>;
 // left out. Throws InputError if no normal at a position has a direction, if those at a
 // position cancel, or if there are more than 2^32 - 1 distinct positions. Without
 // normals_from_file, the result has no normals (compute_normals() gives them).
-Mesh weld(const Mesh& mesh, const VertexNamer& name = {});
+// Tags (mesh.tags, one per input vertex when present) are carried over: the copies welded into
+// one vertex must have equal tags, else InputError naming two of them. `first_copies`, if
+// given, receives the first input vertex of each welded vertex (for naming it in messages).
+Mesh weld(const Mesh& mesh, const VertexNamer& name = {}, std::vector<std::uint32_t>* first_copies = nullptr);
 
 // Sum over incident triangles of area x corner angle x unit face normal, normalized; +Z where
 // that sum vanishes (only zero-area triangles around the vertex, or faces that cancel).

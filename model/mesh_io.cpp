@@ -1,6 +1,6 @@
 // load_mesh chains the steps: import (model/io/import.hpp: Assimp and the checks it does not
-// make), exact welding, then normals (model/mesh_build.hpp). The writer is in
-// model/io/write_mesh.cpp.
+// make), exact welding, then normals (model/mesh_build.hpp), then the tag rules
+// (model/st_mesh.hpp). The writers are in model/io/write_mesh.cpp.
 #include "model/mesh_io.hpp"
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 
 #include "model/io/import.hpp"
 #include "model/mesh_build.hpp"
+#include "model/st_mesh.hpp"
 
 namespace tessim {
 
@@ -20,8 +21,10 @@ Mesh load_mesh(const std::filesystem::path& path, std::vector<std::string>* warn
     if (warnings) warnings->push_back(w);
     else std::fprintf(stderr, "tessim: warning: %s\n", w.c_str());
   }
-  Mesh mesh = weld(imported.mesh, [&](std::uint32_t v) { return imported.vertex_name(v); });
+  std::vector<std::uint32_t> first_copies;
+  Mesh mesh = weld(imported.mesh, [&](std::uint32_t v) { return imported.vertex_name(v); }, &first_copies);
   if (!mesh.normals_from_file) mesh = compute_normals(std::move(mesh));
+  validate_tags(mesh, [&](std::uint32_t v) { return imported.vertex_name(first_copies[v]); });
   return mesh;
 }
 

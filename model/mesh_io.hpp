@@ -24,7 +24,17 @@ namespace tessim {
 // What is read but left out (faces of 1 or 2 vertices among triangles) is a warning, each
 // "FILE: ELEMENT: what was done": appended to `warnings`, or printed to stderr as
 // "tessim: warning: ..." when `warnings` is null.
+// A PLY file's vertex properties dx dy dz sigma theta beta are its scalar tags (mesh.tags,
+// docs/stpn.md; empty when the file has none of them): copies welded together must agree, and
+// the tagged mesh must pass validate_tags (model/st_mesh.hpp), else InputError.
 Mesh load_mesh(const std::filesystem::path& path, std::vector<std::string>* warnings = nullptr);
+
+// Writes a whole mesh as binary little-endian PLY: double x y z nx ny nz, then dx dy dz sigma
+// theta beta when it has tags, and uint triangles. load_mesh reads it back with the same
+// triangles and, bit for bit, the same tags and positions (positions that single precision
+// holds, as every position load_mesh returns); normals come back through single precision.
+// Nothing reaches `path` unless the whole file was written (InputError otherwise).
+void write_ply(const Mesh& mesh, const std::filesystem::path& path);
 
 // Counts for `tessim info`.
 struct MeshStats {

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "model/normal_mode.hpp"
+#include "model/vertex_tags.hpp"
 
 namespace tessim {
 
@@ -37,17 +38,6 @@ struct PnVertex {
 
 // Builds the control nets of docs/mathematics.md §2-§4 for the chosen normal mode.
 PnPatch make_patch(const PnInput& in, NormalMode mode);
-
-// The scalar tags of one vertex of a scalar-tagged PN mesh (docs/mathematics.md §9): crease
-// vector Δ = N⁺ − N⁻ (zero: the vertex is untagged; its normal N is then normalize(N⁺ + N⁻)),
-// sharpness σ >= 0, tension θ in [-1, 1], bias β in [-1, 1].
-struct VertexTags {
-  glm::dvec3 delta{0.0};
-  double sigma = 0.0, theta = 0.0, beta = 0.0;
-  bool tagged() const { return delta != glm::dvec3(0.0); }
-  // No tag changes anything: untagged and no tension (σ and β act only with Δ != 0).
-  bool neutral() const { return !tagged() && theta == 0.0; }
-};
 
 // Scalar-tagged PN control points (docs/mathematics.md §9): each vertex's sharp normal on the
 // triangle's side of its crease replaces its normal in the normal field, and each tangent

@@ -25,6 +25,10 @@ void validate(const Mesh& mesh, const TessSettings& settings) {
     throw InputError(file, "normals",
                      std::to_string(mesh.normals.size()) + " normals for " +
                          std::to_string(mesh.positions.size()) + " positions");
+  if (mesh.has_tags() && mesh.tags.size() != mesh.positions.size())
+    throw InputError(file, "tags",
+                     std::to_string(mesh.tags.size()) + " tag sets for " + std::to_string(mesh.positions.size()) +
+                         " positions");
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     if (!is_finite(mesh.positions[i]))
       throw InputError(file, "vertex " + std::to_string(i), "position is NaN or infinite");
@@ -119,11 +123,14 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settin
     }
     const glm::uvec3& tri = mesh.triangles[t];
     PnInput input;
+    std::array<VertexTags, 3> tags{};
     for (int c = 0; c < 3; ++c) {
       input.p[c] = mesh.positions[tri[c]];
       input.n[c] = mesh.normals[tri[c]];
+      if (mesh.has_tags()) tags[c] = mesh.tags[tri[c]];
     }
-    const PnPatch patch = make_patch(input, mode);
+    // A tagged mesh takes the scalar-tagged control points (plain PN where tags are neutral).
+    const PnPatch patch = mesh.has_tags() ? make_stpn_patch(input, tags, mode) : make_patch(input, mode);
     summary.degenerate_edges += static_cast<std::uint64_t>(patch.degenerate_edges);
     if (is_zero_area(input.p[0], input.p[1], input.p[2])) ++summary.degenerate_triangles;
 

@@ -66,7 +66,8 @@ struct TessellationSummary {
 using PatchSink = std::function<void(const PatchView&)>;
 
 // Tessellates every triangle of the mesh with the pattern the settings give it and hands each
-// patch that is not culled to the sink in input order. Throws InputError for invalid settings
+// patch that is not culled to the sink in input order. A mesh with tags is tessellated as
+// scalar-tagged PN triangles (make_stpn_patch, docs/stpn.md), one without as plain PN. Throws InputError for invalid settings
 // or mesh, before the first patch.
 TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settings, NormalMode mode,
                                     const PatchSink& sink);

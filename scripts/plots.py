@@ -603,6 +603,24 @@ def fig_cpg_variants(rows, out):
         out.table("A fast geometry engine (K = 1): vertices per cycle", ["normals", "L"] + cols + ["best: bottleneck"],
                   table, note=f"Grid `cpg_fast` ({workload(f, 'mesh', 'int_latency', 'te_contexts', 'gpe_cycles')}).")
 
+    # Adaptive factors with a faster CPG.
+    a = in_grid(rows, "cpg_adaptive")
+    if a:
+        av = sorted({cpg_variant(r) for r in a})
+        table = []
+        for cam in sorted(distinct(a, "camera"), key=camera_distance):
+            for n in distinct(a, "int_blocks"):
+                for K in distinct(a, "gpe_cycles"):
+                    pts = {cpg_variant(r): r for r in a if r["camera"] == cam and r["int_blocks"] == n
+                           and r["gpe_cycles"] == K}
+                    some = next(iter(pts.values()))
+                    table.append([fmt(camera_distance(cam), 3), fmt(some["workload.vertices_per_patch.mean"], 3), n, K] +
+                                 [fmt(pts[v]["cycles_per_vertex"], 4) if v in pts else "–" for v in av] +
+                                 [fmt(max(K, some["int.ops_per_vertex"] / n), 3)])
+        out.table("Adaptive factors with each CPG variant: cycles per vertex",
+                  ["view distance", "mean vertices/patch", "N", "K"] + [cpg_label(v) for v in av] + ["max(K, ops/N)"],
+                  table, note=f"Grid `cpg_adaptive` ({workload(a, 'mesh', 'normals', 'pixels_per_segment', 'te_contexts')}).")
+
     # The analytical model against the simulation on the CPG grids.
     both = g + (f or [])
     errs = sorted(abs(r["analytic.run_cycles"] - r["cycles"]) / r["cycles"] for r in both)

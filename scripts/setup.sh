@@ -24,6 +24,7 @@ PACKAGES=(
   zlib1g-dev                    # FST waveforms
   git                           # scripts/costs.py records the commit its RTL was taken from
   strace                        # scripts/check_packages.py: files the build and tests touch
+  gtkwave                       # tessim cosim --wave: FST to VCD (fst2vcd), viewing the dumps with their .gtkw layout
 )
 
 missing=()

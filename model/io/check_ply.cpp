@@ -1,18 +1,49 @@
-// PLY structure check: header, then every element instance present in full.
+// PLY structure check: header, then every element instance present in full. The same walk
+// collects the values of chosen properties (model/io/ply.hpp), which read_ply_tags uses.
 #include <algorithm>
+#include <bit>
 #include <cstring>
+#include <stdexcept>
 
 #include "model/io/format.hpp"
+#include "model/io/ply.hpp"
 
 namespace tessim::io {
 
 namespace {
 
-struct PlyScalar {
-  int size = 0;
-  bool is_signed = false;
-  bool is_integer = false;
-};
+// The `size` bytes at `p` in the file's byte order, as the native-order bytes of a value.
+void native_bytes(const char* p, int size, bool big_endian, unsigned char* out) {
+  std::memcpy(out, p, static_cast<std::size_t>(size));
+  if (big_endian != (std::endian::native == std::endian::big)) std::reverse(out, out + size);
+}
+
+std::int64_t read_ply_integer(const char* p, const PlyScalar& type, bool big_endian) {
+  unsigned char bytes[8] = {};
+  std::memcpy(bytes, p, static_cast<std::size_t>(type.size));
+  if (big_endian) std::reverse(bytes, bytes + type.size);
+  std::uint64_t u = 0;
+  for (int i = type.size - 1; i >= 0; --i) u = (u << 8) | bytes[i];
+  if (type.is_signed && (bytes[type.size - 1] & 0x80u)) return static_cast<std::int64_t>(u) - (std::int64_t{1} << (8 * type.size));
+  return static_cast<std::int64_t>(u);
+}
+
+// One binary scalar as a double: exact for every PLY type (integers have at most 32 bits).
+double read_ply_value(const char* p, const PlyScalar& type, bool big_endian) {
+  if (type.is_integer) return static_cast<double>(read_ply_integer(p, type, big_endian));
+  unsigned char bytes[8] = {};
+  native_bytes(p, type.size, big_endian, bytes);
+  if (type.size == 4) {
+    float f = 0.0f;
+    std::memcpy(&f, bytes, sizeof f);
+    return static_cast<double>(f);
+  }
+  double d = 0.0;
+  std::memcpy(&d, bytes, sizeof d);
+  return d;
+}
+
+}  // namespace
 
 std::optional<PlyScalar> ply_scalar(std::string_view name) {
   if (name == "char" || name == "int8") return PlyScalar{1, true, true};
@@ -26,34 +57,19 @@ std::optional<PlyScalar> ply_scalar(std::string_view name) {
   return std::nullopt;
 }
 
-struct PlyProperty {
-  std::string name;
-  bool is_list = false;
-  PlyScalar count;  // lists only
-  PlyScalar item;
-};
-
-struct PlyElement {
-  std::string name;
-  std::uint64_t count = 0;
-  std::vector<PlyProperty> properties;
-};
-
-enum class PlyFormat { Ascii, BinaryLittle, BinaryBig };
-
-std::int64_t read_ply_integer(const char* p, const PlyScalar& type, bool big_endian) {
-  unsigned char bytes[8] = {};
-  std::memcpy(bytes, p, static_cast<std::size_t>(type.size));
-  if (big_endian) std::reverse(bytes, bytes + type.size);
-  std::uint64_t u = 0;
-  for (int i = type.size - 1; i >= 0; --i) u = (u << 8) | bytes[i];
-  if (type.is_signed && (bytes[type.size - 1] & 0x80u)) return static_cast<std::int64_t>(u) - (std::int64_t{1} << (8 * type.size));
-  return static_cast<std::int64_t>(u);
+std::optional<std::size_t> PlyElement::find(std::string_view property) const {
+  for (std::size_t i = 0; i < properties.size(); ++i)
+    if (properties[i].name == property) return i;
+  return std::nullopt;
 }
 
-}  // namespace
+std::optional<std::size_t> PlyHeader::find(std::string_view element) const {
+  for (std::size_t i = 0; i < elements.size(); ++i)
+    if (elements[i].name == element) return i;
+  return std::nullopt;
+}
 
-void check_ply(const std::string& file, const std::string& data) {
+PlyHeader read_ply_header(const std::string& file, const std::string& data) {
   LineReader lines(data);
   auto header_error = [&](const std::string& reason) {
     return InputError(file, "PLY header line " + std::to_string(lines.line_number()), reason);
@@ -63,7 +79,8 @@ void check_ply(const std::string& file, const std::string& data) {
   if (!magic || *magic != "ply") throw InputError(file, "PLY header", "does not start with 'ply'");
 
   std::optional<PlyFormat> format;
-  std::vector<PlyElement> elements;
+  PlyHeader header;
+  std::vector<PlyElement>& elements = header.elements;
   bool ended = false;
   while (const auto line = lines.next()) {
     Tokenizer tokens(*line);
@@ -113,7 +130,13 @@ void check_ply(const std::string& file, const std::string& data) {
   }
   if (!ended) throw InputError(file, "PLY header", "no end_header line (file truncated or not PLY)");
   if (!format) throw InputError(file, "PLY header", "no format line");
+  header.format = *format;
+  header.body = lines.pos();
+  return header;
+}
 
+void walk_ply_body(const std::string& file, const std::string& data, const PlyHeader& header, PlyColumns* columns) {
+  const std::vector<PlyElement>& elements = header.elements;
   auto truncated = [&](const PlyElement& e, std::uint64_t instance) {
     return InputError(file, "element '" + e.name + "' " + std::to_string(instance) + " of " + std::to_string(e.count),
                       "file ends early (truncated)");
@@ -121,13 +144,30 @@ void check_ply(const std::string& file, const std::string& data) {
   auto bad_property = [&](const PlyElement& e, std::uint64_t instance, const PlyProperty& p, const std::string& reason) {
     return InputError(file, "element '" + e.name + "' " + std::to_string(instance) + " property '" + p.name + "'", reason);
   };
+  // For the element of `columns`: the column of each of its properties (-1: not collected).
+  std::vector<int> column_of;
+  if (columns) {
+    const PlyElement& e = elements.at(columns->element);
+    column_of.assign(e.properties.size(), -1);
+    for (std::size_t c = 0; c < columns->properties.size(); ++c) {
+      if (e.properties.at(columns->properties[c]).is_list) throw std::logic_error("walk_ply_body: a list column");
+      column_of[columns->properties[c]] = static_cast<int>(c);
+    }
+    columns->values.clear();  // grown row by row as instances are read (the count is the file's claim)
+  }
+  const std::size_t width = columns ? columns->properties.size() : 0;
+  auto collecting = [&](std::size_t element) { return columns && columns->element == element; };
 
-  if (*format == PlyFormat::Ascii) {
-    Tokenizer tokens(std::string_view(data).substr(lines.pos()));
-    for (const PlyElement& e : elements) {
+  if (header.format == PlyFormat::Ascii) {
+    Tokenizer tokens(std::string_view(data).substr(header.body));
+    for (std::size_t ei = 0; ei < elements.size(); ++ei) {
+      const PlyElement& e = elements[ei];
       if (e.properties.empty()) continue;
+      const bool collect = collecting(ei);
       for (std::uint64_t i = 0; i < e.count; ++i) {
-        for (const PlyProperty& p : e.properties) {
+        if (collect) columns->values.resize(columns->values.size() + width);
+        for (std::size_t pi = 0; pi < e.properties.size(); ++pi) {
+          const PlyProperty& p = e.properties[pi];
           std::uint64_t values = 1;
           if (p.is_list) {
             const auto count_token = tokens.next();
@@ -139,17 +179,22 @@ void check_ply(const std::string& file, const std::string& data) {
           for (std::uint64_t v = 0; v < values; ++v) {
             const auto token = tokens.next();
             if (!token) throw truncated(e, i);
-            if (!parses_as_number(*token)) throw bad_property(e, i, p, "'" + std::string(*token) + "' is not a number");
+            const auto number = parse_number(*token);
+            if (!number) throw bad_property(e, i, p, "'" + std::string(*token) + "' is not a number");
+            if (collect && column_of[pi] >= 0) columns->values[columns->values.size() - width + static_cast<std::size_t>(column_of[pi])] = *number;
           }
         }
       }
+      if (collect) return;
     }
     return;
   }
 
-  const bool big_endian = *format == PlyFormat::BinaryBig;
-  std::size_t offset = lines.pos();
-  for (const PlyElement& e : elements) {
+  const bool big_endian = header.format == PlyFormat::BinaryBig;
+  std::size_t offset = header.body;
+  for (std::size_t ei = 0; ei < elements.size(); ++ei) {
+    const PlyElement& e = elements[ei];
+    const bool collect = collecting(ei);
     const bool fixed = std::none_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.is_list; });
     if (fixed) {
       std::uint64_t row = 0;
@@ -157,11 +202,30 @@ void check_ply(const std::string& file, const std::string& data) {
       if (row == 0) continue;
       const std::uint64_t available = (data.size() - offset) / row;
       if (available < e.count) throw truncated(e, available);
+      if (collect) {
+        // Byte offset of each collected property within a row.
+        std::vector<std::size_t> at(width);
+        std::size_t position = 0;
+        for (std::size_t pi = 0; pi < e.properties.size(); ++pi) {
+          if (column_of[pi] >= 0) at[static_cast<std::size_t>(column_of[pi])] = position;
+          position += static_cast<std::size_t>(e.properties[pi].item.size);
+        }
+        columns->values.resize(static_cast<std::size_t>(e.count) * width);
+        for (std::uint64_t i = 0; i < e.count; ++i) {
+          const char* record = data.data() + offset + static_cast<std::size_t>(i * row);
+          for (std::size_t c = 0; c < width; ++c)
+            columns->values[static_cast<std::size_t>(i) * width + c] =
+                read_ply_value(record + at[c], e.properties[columns->properties[c]].item, big_endian);
+        }
+        return;
+      }
       offset += static_cast<std::size_t>(e.count * row);
       continue;
     }
     for (std::uint64_t i = 0; i < e.count; ++i) {
-      for (const PlyProperty& p : e.properties) {
+      if (collect) columns->values.resize(columns->values.size() + width);
+      for (std::size_t pi = 0; pi < e.properties.size(); ++pi) {
+        const PlyProperty& p = e.properties[pi];
         std::uint64_t bytes = static_cast<std::uint64_t>(p.item.size);
         if (p.is_list) {
           if (data.size() - offset < static_cast<std::size_t>(p.count.size)) throw truncated(e, i);
@@ -171,10 +235,64 @@ void check_ply(const std::string& file, const std::string& data) {
           bytes *= static_cast<std::uint64_t>(n);
         }
         if (data.size() - offset < bytes) throw truncated(e, i);
+        if (collect && column_of[pi] >= 0)
+          columns->values[columns->values.size() - width + static_cast<std::size_t>(column_of[pi])] =
+              read_ply_value(data.data() + offset, p.item, big_endian);
         offset += static_cast<std::size_t>(bytes);
       }
     }
+    if (collect) return;
   }
+}
+
+void check_ply(const std::string& file, const std::string& data) { walk_ply_body(file, data, read_ply_header(file, data)); }
+
+std::optional<PlyTags> read_ply_tags(const std::string& file, const std::string& data) {
+  const PlyHeader header = read_ply_header(file, data);
+  const auto vertex = header.find("vertex");
+  if (!vertex) return std::nullopt;
+  const PlyElement& element = header.elements[*vertex];
+  PlyColumns columns;
+  columns.element = *vertex;
+  // Columns 0-2: x y z; then the tags the file declares, `tag_column[t]` (-1: absent).
+  for (const char* axis : {"x", "y", "z"}) {
+    const auto p = element.find(axis);
+    if (!p || element.properties[*p].is_list) return std::nullopt;  // Assimp refuses the file
+    columns.properties.push_back(*p);
+  }
+  int tag_column[6];
+  bool any = false;
+  for (int t = 0; t < 6; ++t) {
+    tag_column[t] = -1;
+    const auto p = element.find(kPlyTagProperties[t]);
+    if (!p) continue;
+    if (element.properties[*p].is_list)
+      throw InputError(file, "element 'vertex' property '" + element.properties[*p].name + "'",
+                       "is a list; scalar tags are single numbers (docs/stpn.md)");
+    tag_column[t] = static_cast<int>(columns.properties.size());
+    columns.properties.push_back(*p);
+    any = true;
+  }
+  if (!any) return std::nullopt;
+
+  walk_ply_body(file, data, header, &columns);
+  const std::size_t width = columns.properties.size();
+  const std::size_t count = columns.values.size() / width;
+  PlyTags out;
+  out.positions.reserve(count);
+  out.tags.reserve(count);
+  for (std::size_t v = 0; v < count; ++v) {
+    const double* row = columns.values.data() + v * width;
+    out.positions.emplace_back(static_cast<float>(row[0]), static_cast<float>(row[1]), static_cast<float>(row[2]));
+    auto value = [&](int t) { return tag_column[t] >= 0 ? row[tag_column[t]] : 0.0; };
+    VertexTags tags;
+    tags.delta = glm::dvec3(value(0), value(1), value(2));
+    tags.sigma = value(3);
+    tags.theta = value(4);
+    tags.beta = value(5);
+    out.tags.push_back(tags);
+  }
+  return out;
 }
 
 }  // namespace tessim::io

@@ -101,12 +101,16 @@ std::optional<T> parse_integer(std::string_view token) {
 
 inline std::optional<std::uint64_t> parse_unsigned(std::string_view token) { return parse_integer<std::uint64_t>(token); }
 
-inline bool parses_as_number(std::string_view token) {
+// The whole token as a double (correctly rounded; "nan" and "inf" included), or nothing.
+inline std::optional<double> parse_number(std::string_view token) {
   double value = 0.0;
   const char* first = token.data();
   if (!token.empty() && token.front() == '+') ++first;  // from_chars rejects a leading '+'
   const auto [ptr, ec] = std::from_chars(first, token.data() + token.size(), value);
-  return ec == std::errc() && ptr == token.data() + token.size();
+  if (ec != std::errc() || ptr != token.data() + token.size()) return std::nullopt;
+  return value;
 }
+
+inline bool parses_as_number(std::string_view token) { return parse_number(token).has_value(); }
 
 }  // namespace tessim::io

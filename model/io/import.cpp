@@ -9,13 +9,18 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <mutex>
 
 #include "model/io/format.hpp"
+#include "model/io/ply.hpp"
+#include "model/st_mesh.hpp"
 
 namespace tessim::io {
 
@@ -192,6 +197,34 @@ void check_scene(const std::string& file, const aiScene* scene, std::vector<std:
                        " of 1 or 2 vertices (points or lines) ignored; only triangles and polygons are tessellated");
 }
 
+// Tags are read from the file by vertex index (read_ply_tags); Assimp's PLY reader keeps the
+// file's vertices in order, one mesh of them. Should it ever not (a reader change, per-face
+// data it splits vertices for), tags would land on the wrong vertices: refuse instead.
+bool same_float(float a, float b) {
+  // Within a few units in the last place: Assimp parses ASCII numbers with its own routine,
+  // which is not always correctly rounded.
+  if (a == b) return true;
+  if (std::signbit(a) != std::signbit(b)) return false;
+  const auto ia = std::bit_cast<std::int32_t>(a), ib = std::bit_cast<std::int32_t>(b);
+  return std::abs(static_cast<std::int64_t>(ia) - static_cast<std::int64_t>(ib)) <= 4;
+}
+
+void check_tag_order(const std::string& file, const aiScene* scene, const PlyTags& tags) {
+  auto refuse = [&](const std::string& why) {
+    return InputError(file, "vertex tags", "cannot be matched with the vertices Assimp read (" + why + ")");
+  };
+  if (scene->mNumMeshes != 1) throw refuse(std::to_string(scene->mNumMeshes) + " meshes");
+  const aiMesh* mesh = scene->mMeshes[0];
+  if (mesh->mNumVertices != tags.positions.size())
+    throw refuse(std::to_string(mesh->mNumVertices) + " vertices for the file's " + std::to_string(tags.positions.size()));
+  for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+    const aiVector3D& a = mesh->mVertices[v];
+    const glm::vec3& p = tags.positions[v];
+    if (!same_float(a.x, p.x) || !same_float(a.y, p.y) || !same_float(a.z, p.z))
+      throw refuse("vertex " + std::to_string(v) + " is not where the file puts it");
+  }
+}
+
 }  // namespace
 
 std::string ImportedMesh::vertex_name(std::uint32_t vertex) const {
@@ -205,7 +238,12 @@ ImportedMesh import_mesh(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(file, "file", "is not a regular file");
   const std::string ext = lower_extension(path);
   if (std::filesystem::file_size(path, ec) == 0 && !ec) throw InputError(file, "file", "is empty");
-  if (ext == ".ply") check_ply(file, read_file(file));
+  std::optional<PlyTags> ply_tags;
+  if (ext == ".ply") {
+    const std::string data = read_file(file);
+    check_ply(file, data);
+    ply_tags = read_ply_tags(file, data);
+  }
   if (ext == ".off") check_off(file, read_file(file));
   if (ext == ".stl") check_stl(file, read_file(file));
   if (ext == ".obj") {
@@ -263,6 +301,8 @@ ImportedMesh import_mesh(const std::filesystem::path& path) {
                      "no triangles (" + std::to_string(vertices) + " vertices, " + std::to_string(points) +
                          " point and " + std::to_string(lines) + " line primitives)");
 
+  if (ply_tags) check_tag_order(file, scene, *ply_tags);
+
   out.several_meshes = scene->mNumMeshes > 1;
   out.mesh.source = file;
   out.mesh.normals_from_file = use_file_normals;
@@ -270,10 +310,10 @@ ImportedMesh import_mesh(const std::filesystem::path& path) {
   // Upper bounds (vertices no triangle uses are left out): no regrowth of large arrays.
   positions.reserve(vertices);
   out.mesh.triangles.reserve(triangle_faces);
-  if (use_file_normals) {
-    out.mesh.normals.reserve(vertices);
-    out.origin.reserve(vertices);
-  }
+  const bool keep_origin = use_file_normals || ply_tags;
+  if (use_file_normals) out.mesh.normals.reserve(vertices);
+  if (keep_origin) out.origin.reserve(vertices);
+  if (ply_tags) out.mesh.tags.reserve(vertices);
   for (const MeshInstance& inst : instances) {
     const aiMesh* mesh = scene->mMeshes[inst.mesh];
     const glm::dmat3 linear(inst.transform);
@@ -298,10 +338,15 @@ ImportedMesh import_mesh(const std::filesystem::path& path) {
             throw InputError(file, "vertices", "more than 2^32 - 1 vertices before welding");
           remap[v] = static_cast<std::uint32_t>(positions.size());
           positions.push_back(p);
-          // Only weld()'s messages about file normals name vertices.
-          if (use_file_normals) {
-            out.mesh.normals.push_back(normal_matrix * to_glm(mesh->mNormals[v]));
-            out.origin.emplace_back(inst.mesh, v);
+          // Only weld()'s messages about file normals or tags name vertices.
+          if (use_file_normals) out.mesh.normals.push_back(normal_matrix * to_glm(mesh->mNormals[v]));
+          if (keep_origin) out.origin.emplace_back(inst.mesh, v);
+          if (ply_tags) {
+            // check_tag_order: Assimp's vertex v is the file's vertex v.
+            const VertexTags& tags = ply_tags->tags[v];
+            if (const auto problem = tag_value_problem(tags))
+              throw InputError(file, scene_element(out.several_meshes, inst.mesh, "vertex " + std::to_string(v)), *problem);
+            out.mesh.tags.push_back(tags);
           }
         }
         tri[c] = remap[v];

@@ -17,8 +17,10 @@ struct ImportedMesh {
   // reversed to keep them outward). One vertex per (instance, source vertex used by a triangle),
   // in order of first use. With normals_from_file, normals are the file's after the normal
   // matrix, not renormalized (zero-length ones included); STL's facet normals are not taken.
+  // A PLY file's scalar tags (docs/stpn.md) are in mesh.tags, one per vertex, their values
+  // checked (tag_value_problem, model/st_mesh.hpp); empty for every other file.
   Mesh mesh;
-  // With normals_from_file: (Assimp mesh, vertex in it) of every vertex, for messages.
+  // With normals_from_file or tags: (Assimp mesh, vertex in it) of every vertex, for messages.
   std::vector<std::pair<unsigned, unsigned>> origin;
   bool several_meshes = false;
   // What was read but not used, each as "FILE: ELEMENT: what was done" (faces of 1 or 2
@@ -29,8 +31,8 @@ struct ImportedMesh {
 };
 
 // Throws InputError naming the file, the element and the reason for: missing, empty,
-// unreadable or malformed files, no triangles, NaN/Inf coordinates or normals, out-of-range
-// indices, ASCII STL files without 'endsolid' or with incomplete facets, and coordinates that
+// unreadable or malformed files, no triangles, NaN/Inf coordinates or normals, unusable tags,
+// out-of-range indices, ASCII STL files without 'endsolid' or with incomplete facets, and coordinates that
 // single precision (Assimp's) cannot resolve at the scale of the mesh.
 ImportedMesh import_mesh(const std::filesystem::path& path);
 

@@ -1,5 +1,5 @@
 // Streamed export of tessellated meshes: binary little-endian PLY or ASCII OBJ
-// (MeshWriter in model/mesh_io.hpp).
+// (MeshWriter in model/mesh_io.hpp); whole meshes, tags included, as PLY (write_ply).
 #include <bit>
 #include <charconv>
 #include <limits>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "model/io/format.hpp"
+#include "model/io/ply.hpp"
 #include "model/mesh_io.hpp"
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"
@@ -212,6 +213,56 @@ void MeshWriter::finish() {
   w.write_buffer();
   w.out.commit();
   w.finished = true;
+}
+
+}  // namespace tessim
+
+namespace tessim {
+
+void write_ply(const Mesh& mesh, const std::filesystem::path& path) {
+  const std::size_t n = mesh.positions.size();
+  if (mesh.normals.size() != n || (mesh.has_tags() && mesh.tags.size() != n))
+    throw std::logic_error("write_ply: " + std::to_string(n) + " positions, " + std::to_string(mesh.normals.size()) +
+                           " normals, " + std::to_string(mesh.tags.size()) + " tag sets");
+  AtomicOutput out(path, true);
+  std::string buffer;
+  auto flush = [&] {
+    out.stream().write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    buffer.clear();
+    if (!out.stream()) throw InputError(path.string(), "output", "write failed");
+  };
+  constexpr std::size_t kBlock = std::size_t{1} << 20;
+
+  buffer += "ply\nformat binary_little_endian 1.0\n";
+  buffer += mesh.has_tags() ? "comment tessim scalar-tagged mesh (docs/stpn.md)\n" : "comment tessim mesh\n";
+  buffer += "element vertex " + std::to_string(n) + "\n";
+  for (const char* p : {"x", "y", "z", "nx", "ny", "nz"}) buffer += std::string("property double ") + p + "\n";
+  if (mesh.has_tags())
+    for (const char* p : io::kPlyTagProperties) buffer += std::string("property double ") + p + "\n";
+  buffer += "element face " + std::to_string(mesh.triangles.size()) + "\n";
+  buffer += "property list uchar uint vertex_indices\nend_header\n";
+
+  for (std::size_t v = 0; v < n; ++v) {
+    const glm::dvec3& p = mesh.positions[v];
+    const glm::dvec3& nv = mesh.normals[v];
+    const double record[6] = {p.x, p.y, p.z, nv.x, nv.y, nv.z};
+    append_raw(buffer, record, sizeof record);
+    if (mesh.has_tags()) {
+      const VertexTags& t = mesh.tags[v];
+      const double tags[6] = {t.delta.x, t.delta.y, t.delta.z, t.sigma, t.theta, t.beta};
+      append_raw(buffer, tags, sizeof tags);
+    }
+    if (buffer.size() >= kBlock) flush();
+  }
+  for (const glm::uvec3& t : mesh.triangles) {
+    const unsigned char corners = 3;
+    const std::uint32_t indices[3] = {t.x, t.y, t.z};
+    append_raw(buffer, &corners, 1);
+    append_raw(buffer, indices, sizeof indices);
+    if (buffer.size() >= kBlock) flush();
+  }
+  flush();
+  out.commit();
 }
 
 }  // namespace tessim

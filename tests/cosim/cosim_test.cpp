@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -151,7 +153,12 @@ TEST(CosimInjectedBug, RoundingBugIsCaughtAtTheFirstDivergentCycle) {
   EXPECT_FALSE(clean.divergence.has_value());
   ASSERT_TRUE(std::filesystem::exists(wave));
   EXPECT_GT(std::filesystem::file_size(wave), 100u);
+  // The gtkwave layout opens at the divergence, its marker on the divergent cycle.
+  std::ifstream gtkw(gtkw_path(wave));
+  const std::string layout((std::istreambuf_iterator<char>(gtkw)), std::istreambuf_iterator<char>());
+  EXPECT_NE(layout.find("*-4.000000 " + std::to_string(2 * d.cycle) + "\n"), std::string::npos) << layout;
   std::filesystem::remove(wave);
+  std::filesystem::remove(gtkw_path(wave));
 }
 
 TEST(CosimInjectedBug, DroppedStallIsCaught) {
@@ -189,6 +196,102 @@ TEST(CosimLatency3, AgreesInEveryModeAndUnderBackpressure) {
       EXPECT_EQ(r.vertices, expected_vertices(stream));
     }
   }
+}
+
+// Waveforms: an explicit window is recorded in a passing run, as FST or (through fst2vcd) VCD,
+// exactly the cycles asked for; the .gtkw beside it names only signals the dump has, with the
+// widths of the build (two builds of different widths and CPG shapes).
+std::map<std::string, int> vcd_signals(const std::filesystem::path& vcd, std::vector<std::uint64_t>* times) {
+  std::ifstream in(vcd);
+  std::map<std::string, int> names;  // full name as gtkwave spells it -> width
+  std::vector<std::string> scope;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string w;
+    words >> w;
+    if (w == "$scope") {
+      std::string kind, name;
+      words >> kind >> name;
+      scope.push_back(name);
+    } else if (w == "$upscope") {
+      scope.pop_back();
+    } else if (w == "$var") {
+      std::string type, id, name, range;
+      int width = 0;
+      words >> type >> width >> id >> name >> range;
+      std::string full;
+      for (const std::string& s : scope) full += s + ".";
+      full += name + (range.rfind('[', 0) == 0 ? range : "");
+      names[full] = width;
+    } else if (!w.empty() && w[0] == '#') {
+      times->push_back(std::stoull(w.substr(1)));
+    }
+  }
+  return names;
+}
+
+TEST(CosimWave, ExplicitWindowOfAPassingRunWithAMatchingLayout) {
+  tessim::testing::TempDir dir;
+  struct Build {
+    const char* name;
+    int n, latency, contexts;
+    sim::CpgVariant cpg;
+  };
+  for (const Build b : {Build{"n2", 2, 1, 4, {}}, Build{"n3_lat3", 3, 3, 6, {3, 5}}}) {
+    CosimOptions o = options(b.n, 0.2, 2, 7);
+    o.variant = b.name;
+    o.unit.int_latency = b.latency;
+    o.unit.te_contexts = b.contexts;
+    o.unit.cpg = b.cpg;
+    const auto stream = random_triangles(6, 7, o.unit.format, 3);
+    for (const char* ext : {".fst", ".vcd"}) {
+      o.wave = dir.path() / (std::string(b.name) + ext);
+      o.wave_cycles = WaveWindow{100, 160};
+      const CosimReport r = run_cosim(stream, o);
+      expect_pass(r, o);
+      ASSERT_EQ(r.wave, o.wave);
+      ASSERT_TRUE(std::filesystem::exists(o.wave)) << o.wave;
+      const auto gtkw = gtkw_path(o.wave);
+      ASSERT_TRUE(std::filesystem::exists(gtkw));
+      if (std::string(ext) == ".fst") continue;
+      EXPECT_FALSE(std::filesystem::exists(wave_recording_path(o.wave))) << "the temporary FST is removed";
+      std::vector<std::uint64_t> times;
+      const auto signals = vcd_signals(o.wave, &times);
+      ASSERT_FALSE(times.empty());
+      EXPECT_EQ(times.front(), 200u);  // cycle 100 at time 2c
+      EXPECT_EQ(times.back(), 321u);   // cycle 160 after its rising edge, 2c + 1
+      std::ifstream layout(gtkw);
+      int listed = 0;
+      for (std::string line; std::getline(layout, line);) {
+        if (line.rfind("tess.", 0) != 0) continue;
+        ++listed;
+        EXPECT_TRUE(signals.contains(line)) << b.name << ": " << line << " is not in the dump";
+      }
+      EXPECT_GT(listed, 30);
+    }
+  }
+}
+
+TEST(CosimWave, BadWaveOptionsAreInputErrorsBeforeTheRun) {
+  tessim::testing::TempDir dir;
+  struct Case {
+    std::vector<std::string> args;
+    const char* message;
+  };
+  for (const Case& c : {Case{{"--wave", (dir.path() / "w.txt").string()}, "--wave: "},
+                        Case{{"--wave", (dir.path() / "w.fst").string(), "--wave-window", "50:10"}, "--wave-window: "},
+                        Case{{"--wave", (dir.path() / "w.fst").string(), "--wave-window", "10:50", "--seeds", "2"},
+                             "--wave-window: "},
+                        Case{{"--wave", (dir.path() / "w.fst").string(), "--wave-window", "0"}, "--wave-window: "},
+                        Case{{"--wave", (dir.path() / "missing" / "w.vcd").string()}, "--wave: "}}) {
+    std::vector<std::string> args{"cosim", "--random", "4"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const auto r = tessim::testing::run_tessim(args, dir.path());
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "") << "nothing runs";
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "w.fst"));
 }
 
 // The CPG variants (docs/microarchitecture.md §5): one lane with radix-16 steps (N = 1), three

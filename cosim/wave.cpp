@@ -1,0 +1,181 @@
+#include "cosim/wave.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#include "model/error.hpp"
+#include "sim/cpg.hpp"
+
+extern char** environ;
+
+namespace tessim::cosim {
+
+namespace {
+
+constexpr const char* kFst2Vcd = "fst2vcd";  // Debian package gtkwave
+
+bool on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::stringstream dirs(path);
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    if (!dir.empty() && ::access((std::filesystem::path(dir) / program).c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+// Verilog's $clog2: the bits that count 0 .. x - 1.
+int clog2(std::uint64_t x) {
+  int bits = 0;
+  while ((std::uint64_t{1} << bits) < x) ++bits;
+  return bits;
+}
+
+std::string range(int width) {
+  std::string r;
+  if (width == 1) return r;
+  r += '[';
+  r += std::to_string(width - 1);
+  r += ":0]";
+  return r;
+}
+
+}  // namespace
+
+WaveFormat wave_format(const std::filesystem::path& path, const std::string& option) {
+  const std::string ext = path.extension().string();
+  if (ext == ".fst") return WaveFormat::Fst;
+  if (ext == ".vcd") return WaveFormat::Vcd;
+  throw InputError("command line", option,
+                   "'" + path.string() + "': the waveform format is chosen by the extension, .fst or .vcd");
+}
+
+void check_wave_path(const std::filesystem::path& path, const std::string& option) {
+  if (wave_format(path, option) == WaveFormat::Vcd && !on_path(kFst2Vcd))
+    throw InputError("command line", option,
+                     "'" + path.string() + "': VCD output needs fst2vcd (Debian package gtkwave, scripts/setup.sh)");
+}
+
+std::filesystem::path wave_recording_path(const std::filesystem::path& path) {
+  if (wave_format(path) == WaveFormat::Fst) return path;
+  std::filesystem::path tmp = path;
+  tmp += ".recording.fst";
+  return tmp;
+}
+
+std::filesystem::path gtkw_path(const std::filesystem::path& dump) {
+  std::filesystem::path p = dump;
+  p.replace_extension(".gtkw");
+  return p;
+}
+
+std::string gtkw_text(const std::filesystem::path& dump, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
+                      std::optional<std::uint64_t> marker) {
+  const int W = hw.format.coord_width();
+  const int B = hw.format.bary_bits;
+  const int V = hw.te_contexts;
+  // Widths of the RTL's registers for this configuration (rtl/tess_cpg.sv, tess_te.sv, tess_fifo.sv).
+  const int cpg_counter = clog2(static_cast<std::uint64_t>(sim::cpg_cycles(NormalMode::Quadratic, hw.format, hw.cpg)));
+  const int cpg_step = clog2(static_cast<std::uint64_t>(sim::cpg_edge_cycles(NormalMode::Quadratic, hw.format, hw.cpg.digit_bits)));
+  const int te_count = clog2(static_cast<std::uint64_t>(V) + 1);
+  const int te_index = V > 1 ? clog2(static_cast<std::uint64_t>(V)) : 1;
+
+  std::ostringstream o;
+  const std::filesystem::path abs = std::filesystem::absolute(dump);
+  o << "[*] tessim cosim: the interfaces of tess_unit (docs/verification.md, Waveforms)\n";
+  o << "[dumpfile] \"" << abs.string() << "\"\n";
+  o << "[savefile] \"" << gtkw_path(abs).string() << "\"\n";
+  // Zoom (about 40 cycles across a 1600-pixel window), the marker on the divergence, and the view
+  // opening 34 cycles before it.
+  o << "*-4.000000 " << (marker ? static_cast<long long>(2 * *marker) : -1LL) << "\n";
+  const std::uint64_t start = marker && *marker > first_cycle + 34 ? *marker - 34 : first_cycle;
+  o << "[timestart] " << 2 * start << "\n";
+  o << "[size] 1600 1150\n[signals_width] 320\n[sst_width] 240\n[sst_expanded] 1\n";
+  o << "[treeopen] tess.\n[treeopen] tess.tess_unit.\n";
+  const std::string top = "tess.", unit = "tess.tess_unit.";
+  auto group = [&](const char* title) { o << "@200\n-" << title << "\n"; };
+  auto bit = [&](const std::string& name) { o << "@28\n" << name << "\n"; };
+  auto hex = [&](const std::string& name, int width) { o << "@22\n" << name << range(width) << "\n"; };
+  auto dec = [&](const std::string& name, int width) { o << "@24\n" << name << range(width) << "\n"; };
+
+  group("clock, reset, mode");
+  bit(top + "clk_i");
+  bit(top + "rst_ni");
+  dec(top + "mode_i", 2);
+  dec(top + "perf_cycles_o", 64);
+  group("triangles in");
+  bit(top + "tri_valid_i");
+  bit(top + "tri_ready_o");
+  dec(top + "tri_id_i", 32);
+  dec(top + "tri_l_i", 7);
+  dec(unit + "u_tri_fifo.count_q", clog2(static_cast<std::uint64_t>(hw.tri_fifo_depth) + 1));
+  group("CPG");
+  bit(unit + "u_cpg.accept");
+  bit(unit + "u_cpg.busy_q");
+  dec(unit + "u_cpg.counter_q", cpg_counter);
+  dec(unit + "u_cpg.edge_q", 2);
+  dec(unit + "u_cpg.step_q", cpg_step);
+  bit(unit + "u_cpg.write");
+  group("control-point buffers (0 EMPTY, 1 FULL, 2 DRAINING)");
+  dec(unit + "u_cpbuf.state_q[0]", 2);
+  dec(unit + "u_cpbuf.state_q[1]", 2);
+  bit(unit + "u_cpbuf.wr_ptr_q");
+  bit(unit + "u_cpbuf.rd_ptr_q");
+  group("TE");
+  dec(unit + "u_te.count_q", te_count);
+  dec(unit + "u_te.head_q", te_index);
+  hex(unit + "u_te.int_busy_o", hw.int_blocks);
+  bit(unit + "u_te.te_busy_o");
+  bit(unit + "u_te.te_starved_o");
+  bit(unit + "u_te.te_blocked_o");
+  group("vertices out");
+  dec(unit + "u_vtx_fifo.count_q", clog2(static_cast<std::uint64_t>(hw.vtx_fifo_depth) + 1));
+  bit(top + "vtx_valid_o");
+  bit(top + "vtx_ready_i");
+  dec(top + "vtx_id_o", 32);
+  dec(top + "vtx_j_o", 7);
+  dec(top + "vtx_k_o", 7);
+  dec(top + "vtx_l_o", 7);
+  bit(top + "vtx_last_o");
+  hex(top + "vtx_u_o", B + 1);
+  hex(top + "vtx_v_o", B + 1);
+  hex(top + "vtx_pos_o", 3 * W);
+  hex(top + "vtx_nrm_o", 3 * W);
+  dec(top + "vtx_flags_o", 2);
+  return o.str();
+}
+
+void finish_wave(const std::filesystem::path& path, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
+                 std::optional<std::uint64_t> marker) {
+  if (wave_format(path) == WaveFormat::Vcd) {
+    const std::filesystem::path recording = wave_recording_path(path);
+    const std::string in = recording.string(), out = path.string();
+    std::vector<std::string> args{kFst2Vcd, "-f", in, "-o", out};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    if (posix_spawnp(&pid, kFst2Vcd, nullptr, nullptr, argv.data(), environ) != 0)
+      throw std::runtime_error("cannot run fst2vcd to write " + out);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    std::error_code ec;
+    std::filesystem::remove(recording, ec);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+      throw std::runtime_error("fst2vcd failed to convert the waveform into " + out);
+  }
+  std::ofstream gtkw(gtkw_path(path));
+  gtkw << gtkw_text(path, hw, first_cycle, marker);
+  if (!gtkw) throw std::runtime_error("cannot write " + gtkw_path(path).string());
+}
+
+}  // namespace tessim::cosim
