@@ -1,5 +1,6 @@
 // tessim sim: a whole mesh through the cycle model of the unit and its geometry engine;
 // statistics, a human summary, a Perfetto trace, the issue schedule, the tessellated mesh.
+#include <charconv>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -28,6 +29,7 @@ struct SimArgs {
   std::string stats;
   std::string trace;
   std::uint64_t trace_cycles = 20000;
+  std::string trace_window;  // START:END, instead of the first trace_cycles cycles
   std::string output;
   bool schedule = false;
   bool errors = false;
@@ -40,6 +42,20 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   if (!a.output.empty() && !is_supported_output(a.output))
     throw InputError(a.output, "output", "unsupported extension (use .ply or .obj)");
   if (a.trace_cycles == 0) throw InputError("command line", "--trace-cycles", "must be at least 1");
+  sim::TraceWindow trace_window{0, a.trace_cycles};
+  if (!a.trace_window.empty()) {
+    const std::size_t colon = a.trace_window.find(':');
+    std::uint64_t from = 0, to = 0;
+    auto whole = [](std::string_view text, std::uint64_t& value) {
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+      return !text.empty() && ec == std::errc() && end == text.data() + text.size();
+    };
+    if (colon == std::string::npos || !whole(std::string_view(a.trace_window).substr(0, colon), from) ||
+        !whole(std::string_view(a.trace_window).substr(colon + 1), to) || to < from || to == UINT64_MAX)
+      throw InputError("command line", "--trace-window",
+                       "'" + a.trace_window + "' is not START:END (cycles, START <= END)");
+    trace_window = {from, to + 1};
+  }
   check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}});
   const std::optional<TessSettings> adaptive = adaptive_workload(a.adaptive, "sim");
 
@@ -69,7 +85,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   }
   std::unique_ptr<sim::TraceWriter> trace;
   if (!a.trace.empty()) {
-    trace = std::make_unique<sim::TraceWriter>(a.trace, cfg.int_blocks, a.trace_cycles);
+    trace = std::make_unique<sim::TraceWriter>(a.trace, cfg.int_blocks, cfg.te_contexts, trace_window);
     hooks.observers.push_back(trace.get());
   }
   std::unique_ptr<sim::ScheduleRecorder> schedule;
@@ -108,10 +124,14 @@ void register_sim(CLI::App& app) {
   sub->add_option("mesh", args->mesh, "input mesh (OBJ, PLY, STL, OFF, ...)")->capture_default_str();
   auto flags = std::make_shared<ConfigFlags>(*sub);  // --config and every parameter (sim/params.hpp)
   sub->add_option("--stats", args->stats, "write the statistics as JSON");
-  sub->add_option("--trace", args->trace, "write a Chrome/Perfetto trace (JSON)");
-  sub->add_option("--trace-cycles", args->trace_cycles, "cycles recorded in the trace")
-      ->transform(number_check<std::uint64_t>("command line", "--trace-cycles", "1..2^64-1"))
-      ->capture_default_str();
+  sub->add_option("--trace", args->trace,
+                  "write a Chrome/Perfetto trace (JSON; gzip-compressed when the name ends in .gz, e.g. .json.gz)");
+  auto* trace_cycles = sub->add_option("--trace-cycles", args->trace_cycles, "cycles recorded in the trace, from cycle 0")
+                           ->transform(number_check<std::uint64_t>("command line", "--trace-cycles", "1..2^64-1"))
+                           ->capture_default_str();
+  sub->add_option("--trace-window", args->trace_window,
+                  "START:END: record cycles START to END in the trace instead (docs/statistics.md, Traces)")
+      ->excludes(trace_cycles);
   sub->add_option("-o,--output", args->output, "write the tessellated mesh (.ply or .obj)");
   sub->add_flag("--schedule", args->schedule, "print the issue pattern of the first vertices");
   add_adaptive_options(*sub, args->adaptive, "sim");

@@ -21,6 +21,8 @@ constexpr double kPi = 3.14159265358979323846;
 // |N⁺ + N⁻| below this: the two sides face opposite ways (more than 179.9° apart) and have no
 // reliable average normal N.
 constexpr double kFoldLength = 2e-3;
+// Relative: |n_T · Δ| below this times |n_T| |Δ| does not decide a side reliably.
+constexpr double kSideMargin = 1e-9;
 
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
@@ -365,9 +367,14 @@ StImport make_st_mesh(const Mesh& mesh, std::span<const glm::dvec3> corner_norma
       if (!tagged[v] || kind[v] != VertexKind::Crease) continue;
       const glm::dvec3& delta = out.tags[v].delta;
       auto on_plus_side = [&](std::uint32_t t) { return glm::dot(face_cross[t], delta) >= 0.0; };
+      // A sign within rounding of zero could come out the other way in make_stpn_patch (another
+      // compiler's contractions): such a face counts as on the wrong side.
+      auto decided = [&](std::uint32_t t) {
+        return std::abs(glm::dot(face_cross[t], delta)) > kSideMargin * glm::length(face_cross[t]) * glm::length(delta);
+      };
       bool wrong_side = false, open_end = false;
       for (std::size_t i = 0; i < sides[v].faces.size(); ++i)
-        wrong_side = wrong_side || on_plus_side(sides[v].faces[i]) != sides[v].plus[i];
+        wrong_side = wrong_side || !decided(sides[v].faces[i]) || on_plus_side(sides[v].faces[i]) != sides[v].plus[i];
       for (const std::uint32_t e : edges_of[v]) {
         if (tagged[edges[e].other(v)]) continue;
         for (const std::uint32_t t : edges[e].faces) open_end = open_end || on_plus_side(t) != on_plus_side(edges[e].faces[0]);

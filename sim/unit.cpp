@@ -84,9 +84,11 @@ void Unit::tick(const UnitInputs& in) {
   act_.te = te;
   act_.cpg = cpg_class;
   act_.cpg_action = cpg;
+  act_.cpg_triangle = cpg == CpgAction::Accept ? tri_fifo_.front().id : cpg_.triangle_id();
   act_.tri_pushed = tri_push;
   act_.vtx_popped = vtx_pop;
   act_.allocated = allocate;
+  if (allocate) act_.allocated_patch = buffers_.rd().id;
   act_.retired = retire;
 
   // ---- The clock edge: each block's registers from the decisions above. Pushes write the
@@ -124,6 +126,7 @@ void Unit::skip(std::uint64_t n, const UnitInputs& in) {
   act_.te = te;
   act_.cpg = cpg_class;
   act_.cpg_action = cpg;
+  act_.cpg_triangle = cpg_.triangle_id();  // a quiet stretch never accepts
   counters_.count(0, te, cpg_class, n);
   te_.skip(n);
   cpg_.commit_repeated(cpg, n);

@@ -32,10 +32,12 @@ struct CycleActivity {
   TeClass te = TeClass::Idle;
   CpgClass cpg = CpgClass::Idle;
   CpgAction cpg_action = CpgAction::Idle;
+  std::uint32_t cpg_triangle = 0;  // the triangle the CPG accepts or works on (not while Idle)
   bool tri_pushed = false;
   bool vtx_popped = false;
   bool allocated = false;
   std::uint64_t allocated_vertex = 0;
+  std::uint32_t allocated_patch = 0;  // the patch of the allocated vertex
   bool retired = false;
   std::uint64_t retired_vertex = 0;
 };

@@ -38,6 +38,7 @@ class CpgBlock {
 
   bool busy() const { return busy_; }
   int cycles() const { return cycles_; }
+  std::uint32_t triangle_id() const { return latch_.id; }  // the latched triangle (while busy)
   // GPE mapping only: computing and asking for a spare GPE cycle (always false when dedicated).
   bool computing() const { return gpe_mapping_ && busy_ && counter_ > 0; }
 

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <string>
@@ -222,6 +223,50 @@ TEST(BadMesh, TruncatedStlBadObjNormalAndFarAwayMeshWriteNothing) {
                                 d.scratch.path()),
                      {"far.obj: vertex coordinates: x reaches 1e+07", "single precision"});
   EXPECT_TRUE(d.work.empty()) << entries_text(d.work);
+}
+
+// A closed fan (centre 0, ring 1-6) as ASCII PLY with scalar tags (docs/stpn.md): Δ = (1, 0, 0)
+// and σ = 1 on the vertices listed, the `sigma` text of vertex 0 replaced by `sigma0` if given.
+std::string tagged_fan_ply(const std::vector<int>& tagged, const std::string& sigma0 = "") {
+  std::string s =
+      "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\nproperty double dx\nproperty double dy\n"
+      "property double dz\nproperty double sigma\nproperty double theta\nproperty double beta\n"
+      "element face 6\nproperty list uchar int vertex_indices\nend_header\n";
+  const char* ring[7] = {"0 0 0", "1 0 0", "0.5 0.866 0", "-0.5 0.866 0", "-1 0 0", "-0.5 -0.866 0", "0.5 -0.866 0"};
+  for (int v = 0; v < 7; ++v) {
+    const bool t = std::find(tagged.begin(), tagged.end(), v) != tagged.end();
+    const std::string sigma = v == 0 && !sigma0.empty() ? sigma0 : (t ? "1" : "0");
+    s += std::string(ring[v]) + " 0 0 1 " + (t ? "1" : "0") + " 0 0 " + sigma + " 0 0\n";
+  }
+  s += "3 0 1 2\n3 0 2 3\n3 0 3 4\n3 0 4 5\n3 0 5 6\n3 0 6 1\n";
+  return s;
+}
+
+TEST(BadMesh, TagRuleViolationsAndBadTagsWriteNothing) {
+  Dirs d;
+  const fs::path neighbours = d.scratch.write("neighbours.ply", tagged_fan_ply({0, 1, 3, 5}));
+  const fs::path triangle = d.scratch.write("triangle.ply", tagged_fan_ply({0, 3, 4}));
+  const fs::path nan = d.scratch.write("nan.ply", tagged_fan_ply({0}, "nan"));
+  const fs::path fine = d.scratch.write("fine.ply", tagged_fan_ply({0, 1, 4}));
+  const std::vector<std::pair<fs::path, std::vector<std::string>>> cases = {
+      {neighbours, {"neighbours.ply: vertex 0: tagged, with 3 tagged neighbours (vertex 1, vertex 3, vertex 5)"}},
+      {triangle, {"triangle.ply: triangle 2: all three of its vertices (vertex 0, vertex 3, vertex 4) are tagged"}},
+      {nan, {"nan.ply: vertex 0: tag sigma is nan (tags must be finite)"}},
+  };
+  for (const auto& [mesh, expected] : cases) {
+    SCOPED_TRACE(mesh.filename().string());
+    expect_input_error(run_tessim({"info", mesh.string()}, d.scratch.path()), expected);
+    expect_input_error(run_tessim({"tessellate", mesh.string(), "-o", d.at("t.ply").string()}, d.scratch.path()), expected);
+    expect_input_error(run_tessim({"render", mesh.string(), "--size", "32x32", "-o", d.at("r.png").string()},
+                                  d.scratch.path()),
+                       expected);
+    expect_input_error(run_tessim({"sim", mesh.string(), "-o", d.at("s.ply").string()}, d.scratch.path()), expected);
+  }
+  EXPECT_TRUE(d.work.empty()) << entries_text(d.work);
+  // Two tagged neighbours and two tagged vertices per triangle at most: accepted.
+  const TessimRun ok = run_tessim({"tessellate", fine.string(), "-o", d.at("t.ply").string()}, d.scratch.path());
+  EXPECT_EQ(ok.status, 0) << ok.err;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -25,12 +25,14 @@
 #include "model/st_mesh.hpp"
 #include "model/stpn_import.hpp"
 #include "model/tessellate.hpp"
+#include "tests/support/prism_mesh.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace tessim {
 namespace {
 
 namespace fs = std::filesystem;
+using tessim::testing::prism_obj;
 using tessim::testing::TempDir;
 
 const fs::path kModels = "/usr/share/assimp/models";
@@ -217,7 +219,6 @@ TEST(TaggedPly, ReadWriteReadIsExact) {
     const Mesh first = load_mesh(input);
     write_ply(first, dir.path() / "once.ply");
     const Mesh second = load_mesh(dir.path() / "once.ply");
-    second.source == first.source ? void() : void();
     expect_same_mesh(second, first);
     EXPECT_TRUE(second.normals_from_file);
     // And the written file is a fixed point: writing the reread mesh gives the same bytes.
@@ -329,10 +330,11 @@ TEST(TaggedPly, EveryViolationIsListed) {
   TempDir dir;
   std::vector<PlyVertex> v = fan_vertices();
   for (PlyVertex& p : v) p.t = tags({1, 0, 0}, 1);  // everything tagged
-  // Vertex 0: 6 tagged neighbours; every triangle has three tagged vertices.
+  // Vertex 0 has 6 tagged neighbours, each ring vertex 3, every triangle three tagged vertices.
   EXPECT_TRUE(rejects(dir.write("all.ply", ascii_ply(v, kFanFaces)),
-                      {"all.ply: vertex 0: tagged, with 6 tagged neighbours", "6 more violations of the tag rules at "
-                       "triangle 0, triangle 1, triangle 2, triangle 3, triangle 4, triangle 5"}));
+                      {"all.ply: vertex 0: tagged, with 6 tagged neighbours", "12 more violations of the tag rules at "
+                       "vertex 1, vertex 2, vertex 3, vertex 4, vertex 5, vertex 6, triangle 0, triangle 1, triangle 2, "
+                       "triangle 3, ..."}));
 }
 
 TEST(TaggedPly, ValidateTagsNamesVerticesAndChecksSizes) {
@@ -425,37 +427,21 @@ TEST(StpnImport, CubeCornersArePinnedAndTheCubeKeepsItsShape) {
       for (const glm::dvec3& p : view.positions)
         off_surface = std::max(off_surface, std::abs(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) - 0.5));
     });
-    if (tagged) EXPECT_LE(off_surface, 1e-15);
-    else EXPECT_GT(off_surface, 0.05);
+    if (tagged) {
+      EXPECT_LE(off_surface, 1e-15);
+    } else {
+      EXPECT_GT(off_surface, 0.05);
+    }
     const EdgeComparison c = compare_shared_edges(mesh, 8);
-    EXPECT_EQ(c.compared, 18u * 7u);  // 18 edges, 7 inner points each
+    EXPECT_EQ(c.compared, 18u * 9u);  // 18 edges (12 of the cube, 6 diagonals), 9 points on each
     EXPECT_EQ(c.differing, 0u);
   }
 }
 
-// A closed 16-sided prism with a ring of vertices halfway up: 50 vertices, its two rims hard
-// edges (90°), its sides smooth (22.5° between neighbouring side faces). No normals in the file.
-std::string prism_obj() {
-  std::ostringstream s;
-  s.precision(17);
-  const int n = 16;
-  for (int ring = 0; ring < 3; ++ring)
-    for (int i = 0; i < n; ++i) {
-      const double a = 2.0 * 3.14159265358979323846 * i / n;
-      s << "v " << static_cast<float>(std::cos(a)) << " " << static_cast<float>(std::sin(a)) << " " << ring - 1 << "\n";
-    }
-  s << "v 0 0 -1\nv 0 0 1\n";  // centres of the bottom (49) and top (50) caps, 1-based
-  for (int i = 0; i < n; ++i) {
-    const int j = (i + 1) % n;
-    for (int ring = 0; ring < 2; ++ring) {
-      const int a = ring * n + i + 1, b = ring * n + j + 1, c = (ring + 1) * n + j + 1, d = (ring + 1) * n + i + 1;
-      s << "f " << a << " " << b << " " << c << "\nf " << a << " " << c << " " << d << "\n";
-    }
-    s << "f " << 3 * n + 1 << " " << j + 1 << " " << i + 1 << "\n";                  // bottom, facing -z
-    s << "f " << 3 * n + 2 << " " << 2 * n + i + 1 << " " << 2 * n + j + 1 << "\n";  // top, facing +z
-  }
-  return s.str();
-}
+// Vertices of the prism by where they are (load order is Assimp's order of first use).
+bool is_centre(const glm::dvec3& p) { return p.x == 0.0 && p.y == 0.0; }
+bool on_top_rim(const glm::dvec3& p) { return p.z == 1.0 && !is_centre(p); }
+bool on_a_rim(const glm::dvec3& p) { return std::abs(p.z) == 1.0 && !is_centre(p); }
 
 TEST(StpnImport, PrismRimsBecomeSharpCreases) {
   TempDir dir;
@@ -471,8 +457,10 @@ TEST(StpnImport, PrismRimsBecomeSharpCreases) {
   EXPECT_EQ(s.corners + s.crease_ends + s.non_manifold + s.folded, 0u);
 
   const Mesh& mesh = st.mesh;
+  std::size_t rims = 0;
   for (std::uint32_t v = 0; v < 50; ++v) {
-    const bool rim = v < 16 || (v >= 32 && v < 48);
+    const bool rim = on_a_rim(mesh.positions[v]);
+    rims += rim;
     EXPECT_EQ(mesh.tags[v].tagged(), rim) << v;
     if (!rim) continue;
     EXPECT_EQ(mesh.tags[v].sigma, 1.0);
@@ -480,6 +468,7 @@ TEST(StpnImport, PrismRimsBecomeSharpCreases) {
     EXPECT_NEAR(glm::length(mesh.normals[v]), 1.0, 1e-15);
     EXPECT_NEAR(glm::dot(mesh.normals[v], mesh.tags[v].delta), 0.0, 1e-15);  // Δ ⊥ N
   }
+  EXPECT_EQ(rims, 32u);
 
   // The reference reproduces both side normals at a rim vertex: the cap's normal in cap
   // patches, the side's in side patches (σ = 1).
@@ -488,9 +477,9 @@ TEST(StpnImport, PrismRimsBecomeSharpCreases) {
   tessellate_mesh(mesh, 4, NormalMode::Quadratic, [&](const PatchView& view) {
     const glm::uvec3 t = mesh.triangles[view.triangle];
     const int corner_point[3] = {pattern_index(0, 0, 4), pattern_index(4, 0, 4), pattern_index(0, 4, 4)};
-    const bool cap = t[0] >= 48;
+    const bool cap = is_centre(mesh.positions[t[0]]) || is_centre(mesh.positions[t[1]]) || is_centre(mesh.positions[t[2]]);
     for (int c = 0; c < 3; ++c) {
-      if (t[c] < 32 || t[c] >= 48) continue;  // the top rim only
+      if (!on_top_rim(mesh.positions[t[c]])) continue;
       const glm::dvec3 n = view.normals[static_cast<std::size_t>(corner_point[c])];
       if (cap) {
         ++cap_corners;
@@ -501,12 +490,12 @@ TEST(StpnImport, PrismRimsBecomeSharpCreases) {
       }
     }
   });
-  EXPECT_EQ(cap_corners, 32u);
-  EXPECT_EQ(side_corners, 48u);
+  EXPECT_EQ(cap_corners, 32u);   // 16 rim vertices, 2 cap triangles each
+  EXPECT_EQ(side_corners, 48u);  // 16 quads below the rim, 3 rim corners each
 
   for (NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear, NormalMode::Derivative}) {
     const EdgeComparison c = compare_shared_edges(mesh, 4, mode);
-    EXPECT_EQ(c.compared, (16u * 5u) * 3u);  // 80 edges, 3 inner points each
+    EXPECT_EQ(c.compared, 144u * 5u);  // 96 triangles, 144 edges, 5 points on each
     EXPECT_EQ(c.differing, 0u) << to_string(mode) << ", worst " << c.worst;
   }
 
@@ -527,15 +516,34 @@ TEST(StpnImport, SigmaAndCornerTensionAreTheOptions) {
   const fs::path file = dir.write("prism.obj", prism_obj());
   StImportOptions options;
   options.sigma = 0.5;
-  options.crease_angle = 10.0;  // the sides' 22.5° edges become creases too: rim vertices are corners
+  const StImport soft = import_st_mesh(file, options);
+  EXPECT_EQ(soft.summary.tagged, 32u);
+  for (std::uint32_t v = 0; v < 50; ++v)
+    if (soft.mesh.tags[v].tagged()) {
+      EXPECT_EQ(soft.mesh.tags[v].sigma, 0.5) << v;
+    }
+  EXPECT_EQ(compare_shared_edges(soft.mesh, 4).differing, 0u);
+
+  // At 10° the sides' vertical edges (22.5°) are creases too: the rim vertices become corners
+  // (three creases) and the middle ring crease vertices, whose vertical creases run into those
+  // untagged corners: they are tagged but softened.
+  options.crease_angle = 10.0;
   options.corner_tension = -0.25;
   const StImport st = import_st_mesh(file, options);
-  EXPECT_EQ(st.summary.crease_edges, 32u + 16u * 2u);
+  EXPECT_EQ(st.summary.crease_edges, 32u + 32u);
   EXPECT_EQ(st.summary.corners, 32u);
-  EXPECT_EQ(st.summary.crease_vertices, 16u);  // the middle ring, between two side creases
+  EXPECT_EQ(st.summary.crease_vertices, 16u);
+  EXPECT_EQ(st.summary.tagged, 16u);
+  EXPECT_EQ(st.summary.softened, 16u);
+  EXPECT_EQ(st.summary.softened_ends, 16u);
   for (std::uint32_t v = 0; v < 50; ++v) {
-    if (v < 16 || (v >= 32 && v < 48)) EXPECT_EQ(st.mesh.tags[v].theta, -0.25) << v;
-    if (v >= 16 && v < 32 && st.mesh.tags[v].tagged() && st.mesh.tags[v].sigma > 0.0) EXPECT_EQ(st.mesh.tags[v].sigma, 0.5);
+    const glm::dvec3& p = st.mesh.positions[v];
+    if (on_a_rim(p)) {
+      EXPECT_EQ(st.mesh.tags[v], tags({0, 0, 0}, 0, -0.25)) << v;
+    }
+    if (p.z == 0.0) {
+      EXPECT_TRUE(st.mesh.tags[v].tagged() && st.mesh.tags[v].sigma == 0.0) << v;
+    }
   }
   EXPECT_EQ(compare_shared_edges(st.mesh, 4).differing, 0u);
 }
@@ -551,7 +559,7 @@ TEST(StpnImport, RealHardEdgedMeshesStayClosed) {
       {"Collada/Cinema4D.dae", 36, 36, 0, 8},    // a cube, a cone and a sphere: normals split at hard edges
       {"OBJ/spider.obj", 152, 150, 6, 0},        // normals split at the joints of the legs
       {"X/BCN_Epileptic.X", 89, 77, 9, 4},       // a character with a few hard edges
-      {"OFF/Wuson.off", 600, 488, 228, 149},     // no normals: faces meeting at more than 30°
+      {"OFF/Wuson.off", 600, 488, 230, 149},     // no normals: faces meeting at more than 30°
   };
   for (const Case& c : cases) {
     const fs::path file = kModels / c.file;
@@ -577,7 +585,9 @@ TEST(StpnImport, ACreaseRunningIntoAnUntaggedVertexWouldCrack) {
   TempDir dir;
   const StImport st = import_st_mesh(dir.write("prism.obj", prism_obj()), {});
   Mesh broken = st.mesh;
-  broken.tags[32] = VertexTags{};  // untag one top-rim vertex: its rim neighbours 33 and 47 keep σ = 1
+  // Untag one top-rim vertex: its two rim neighbours keep σ = 1.
+  const auto rim = std::find_if(broken.positions.begin(), broken.positions.end(), on_top_rim);
+  broken.tags[static_cast<std::size_t>(rim - broken.positions.begin())] = VertexTags{};
   const EdgeComparison c = compare_shared_edges(broken, 4);
   EXPECT_GT(c.differing, 0u);
   EXPECT_GT(c.worst, 1e-6);

@@ -1,13 +1,18 @@
 // Scalar-tagged PN control points (model/pn.hpp make_stpn_patch, docs/mathematics.md §9):
-// neutral tags give plain PN bit for bit; hand-computed cases for σ = 0, σ = 1, θ = ±1, β and a
-// crease edge between two tagged vertices.
+// neutral tags give plain PN bit for bit, per patch and for a whole tagged mesh through
+// tessellate_mesh; hand-computed cases for σ = 0, σ = 1, θ = ±1, β and a crease edge between two
+// tagged vertices. Tagged meshes themselves: tests/model/st_mesh_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <random>
+#include <vector>
 
+#include "model/mesh_io.hpp"
 #include "model/pn.hpp"
+#include "model/tessellate.hpp"
 
 namespace tessim {
 namespace {
@@ -130,6 +135,33 @@ TEST(Stpn, CreaseEdgeBetweenTwoTaggedVerticesUsesTheBias) {
   // With β = 0 the crease edge is projected along N itself.
   a.beta = b.beta = 0.0;
   expect_near(make_stpn_patch(in, {a, b, VertexTags{}}, NormalMode::Quadratic).b[kB210], glm::dvec3(1, 0, 0));
+}
+
+// A mesh whose tags are all zero (as a PLY file with tag properties of value 0 gives) tessellates
+// exactly as the same mesh without tags, in every normal mode.
+TEST(Stpn, ZeroTagsTessellateAWholeMeshExactlyAsPlainPn) {
+  const std::filesystem::path file = "/usr/share/assimp/models/PLY/Wuson.ply";
+  if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " not installed (assimp-testmodels)";
+  const Mesh plain = load_mesh(file);
+  ASSERT_FALSE(plain.has_tags());
+  Mesh tagged = plain;
+  tagged.tags.assign(plain.vertex_count(), VertexTags{});
+  for (NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear, NormalMode::Derivative}) {
+    std::vector<glm::dvec3> expected;
+    const TessellationSummary a = tessellate_mesh(plain, 3, mode, [&](const PatchView& view) {
+      expected.insert(expected.end(), view.positions.begin(), view.positions.end());
+      expected.insert(expected.end(), view.normals.begin(), view.normals.end());
+    });
+    std::size_t at = 0, differing = 0;
+    const TessellationSummary b = tessellate_mesh(tagged, 3, mode, [&](const PatchView& view) {
+      for (const auto& span : {view.positions, view.normals})
+        for (const glm::dvec3& x : span) differing += std::memcmp(&x, &expected[at++], sizeof x) != 0;
+    });
+    EXPECT_EQ(at, expected.size());
+    EXPECT_EQ(differing, 0u) << to_string(mode);
+    EXPECT_EQ(a.int_ops, b.int_ops);
+    EXPECT_EQ(a.degenerate_edges, b.degenerate_edges);
+  }
 }
 
 }  // namespace

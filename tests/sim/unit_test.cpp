@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <zlib.h>
 
 #include "model/error.hpp"
 #include "model/mesh.hpp"
@@ -616,7 +617,7 @@ TEST(Trace, WindowTracksAndEvents) {
   const Mesh mesh = bumpy_sphere(0);
   const UnitConfig cfg = config(2, 4, 1, 1, 8);
   const auto path = std::filesystem::temp_directory_path() / ("tessim_trace_" + std::to_string(::getpid()) + ".json");
-  TraceWriter trace(path, 2, 1000);
+  TraceWriter trace(path, 2, 4, TraceWindow{0, 1000});
   struct OpCounter : CycleObserver {
     std::uint64_t ops = 0;
     bool on_cycle(const Unit& u, const GpeCycle&) override {
@@ -646,7 +647,89 @@ TEST(Trace, WindowTracksAndEvents) {
   EXPECT_EQ(op_events, counter.ops);
   EXPECT_GT(op_events, 0u);
   EXPECT_LE(last_ts, 1000.0);
-  EXPECT_EQ(threads, (std::set<std::string>{"CPG", "TE", "INT 0", "INT 1", "GPE"}));
+  EXPECT_EQ(threads, (std::set<std::string>{"CPG", "TE", "INT 0", "INT 1", "GPE", "context 0", "context 1",
+                                            "context 2", "context 3"}));
+}
+
+// A window in the middle of a run, gzip-compressed: only its cycles, triangle ids on the CPG's
+// slices, one slice per vertex on its context's track, and a flow from each patch's CPG write to
+// the allocation of each of its vertices.
+TEST(Trace, WindowInTheMiddleCompressedWithIdsAndFlows) {
+  const Mesh mesh = bumpy_sphere(0);
+  const UnitConfig cfg = config(2, 3, 1, 2, 3);
+  const auto path =
+      std::filesystem::temp_directory_path() / ("tessim_trace_" + std::to_string(::getpid()) + ".json.gz");
+  constexpr std::uint64_t kFrom = 1500, kTo = 4000;
+  TraceWriter trace(path, 2, 3, TraceWindow{kFrom, kTo});
+  struct Recorder : CycleObserver {
+    std::uint64_t ops = 0;
+    std::map<std::uint64_t, std::uint32_t> patch_of;  // vertex -> patch, from the unit
+    bool on_cycle(const Unit& u, const GpeCycle&) override {
+      const CycleActivity& a = u.activity();
+      if (a.allocated) patch_of[a.allocated_vertex] = a.allocated_patch;
+      if (a.cycle >= kFrom && a.cycle < kTo) ops += static_cast<std::uint64_t>(a.ops_issued);
+      for (int i = 0; i < a.ops_issued; ++i) EXPECT_EQ(u.issued_ops()[i].context, u.issued_ops()[i].vertex % 3);
+      return true;
+    }
+  } rec;
+  SimHooks hooks;
+  hooks.observers = {&trace, &rec};
+  simulate(mesh, cfg, hooks);
+  trace.finish();
+  std::string text;
+  {
+    gzFile gz = gzopen(path.c_str(), "rb");
+    ASSERT_NE(gz, nullptr);
+    char buf[1 << 14];
+    for (int n; (n = gzread(gz, buf, sizeof buf)) > 0;) text.append(buf, static_cast<std::size_t>(n));
+    gzclose(gz);
+  }
+  std::filesystem::remove(path);
+  const nlohmann::json j = nlohmann::json::parse(text);
+  EXPECT_EQ(j["otherData"]["first_cycle"], kFrom);
+  std::uint64_t ops = 0;
+  std::map<std::uint64_t, double> write_at;          // patch -> ts of its CPG write slice
+  std::map<std::uint64_t, double> vertex_start;      // vertex -> start of its context slice
+  std::map<std::uint64_t, std::pair<double, double>> flows;  // id -> (s ts, f ts)
+  std::map<std::uint64_t, std::uint64_t> flow_patch;
+  for (const auto& e : j["traceEvents"]) {
+    if (e["ph"] == "M") continue;
+    const double ts = e["ts"].get<double>();
+    if (e["ph"] != "s") {  // a flow may start at a write before the window
+      EXPECT_GE(ts, static_cast<double>(kFrom)) << e.dump();
+    }
+    EXPECT_LE(ts + (e.contains("dur") ? e["dur"].get<double>() : 0), static_cast<double>(kTo)) << e.dump();
+    const int tid = e.contains("tid") ? e["tid"].get<int>() : -1;
+    const std::string name = e["name"];
+    if (e["ph"] == "X" && tid >= 1 && tid <= 2) {
+      ++ops;
+      if (e["args"].contains("patch")) {
+        EXPECT_EQ(e["args"]["patch"], rec.patch_of.at(e["args"]["vertex"].get<std::uint64_t>()));
+      }
+    }
+    if (e["ph"] == "X" && tid == 1000 && name != "idle") {
+      ASSERT_TRUE(e["args"].contains("triangle")) << e.dump();
+      if (name.rfind("write", 0) == 0) write_at[e["args"]["triangle"].get<std::uint64_t>()] = ts;
+    }
+    if (e["ph"] == "X" && tid >= 2000) {
+      const auto v = e["args"]["vertex"].get<std::uint64_t>();
+      EXPECT_EQ(tid - 2000, static_cast<int>(v % 3)) << e.dump();
+      EXPECT_EQ(e["args"]["patch"], rec.patch_of.at(v));
+      vertex_start[v] = ts;
+    }
+    if (e["ph"] == "s") {
+      flows[e["id"].get<std::uint64_t>()].first = ts;
+      flow_patch[e["id"].get<std::uint64_t>()] = std::stoull(name.substr(6));
+    }
+    if (e["ph"] == "f") flows[e["id"].get<std::uint64_t>()].second = ts;
+  }
+  EXPECT_EQ(ops, rec.ops);
+  EXPECT_GT(flows.size(), 20u);
+  for (const auto& [v, sf] : flows) {
+    EXPECT_EQ(flow_patch.at(v), rec.patch_of.at(v));
+    EXPECT_EQ(sf.first, write_at.at(flow_patch.at(v))) << "flow of vertex " << v << " starts at its patch's write";
+    EXPECT_EQ(sf.second, vertex_start.at(v)) << "and ends where the vertex enters its context";
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
