@@ -139,6 +139,7 @@ void register_bench(CLI::App& app);
 void register_schema(CLI::App& app);
 void register_pattern(CLI::App& app);
 void register_stpn_import(CLI::App& app);
+void register_compare(CLI::App& app);
 #ifdef TESSIM_HAVE_COSIM
 void register_cosim(CLI::App& app);
 void register_rtlbench(CLI::App& app);

@@ -5,6 +5,7 @@
 
 #include "model/error.hpp"
 #include "app/commands.hpp"
+#include "sim/version.hpp"
 
 namespace {
 
@@ -36,7 +37,7 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e) {
 int main(int argc, char** argv) {
   CLI::App app{"tessim: PN-triangle tessellation unit simulator (reference, cycle model, RTL)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "tessim 0.1.0");
+  app.set_version_flag("--version", std::string("tessim 0.1.0 (") + tessim::tool_version() + ")");
   tessim::app::register_info(app);
   tessim::app::register_tessellate(app);
   tessim::app::register_render(app);
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
   tessim::app::register_schema(app);
   tessim::app::register_pattern(app);
   tessim::app::register_stpn_import(app);
+  tessim::app::register_compare(app);
 #ifdef TESSIM_HAVE_COSIM
   tessim::app::register_cosim(app);
   tessim::app::register_rtlbench(app);

@@ -1,6 +1,7 @@
 // The structural checks that run before Assimp sees a file (model/io/format.hpp) under
 // libFuzzer, without the import behind them (fuzz_mesh covers that, at Assimp's speed): the
-// first byte picks PLY, OFF, ASCII STL or OBJ face indices, the rest is the file's content.
+// first byte picks PLY (with its scalar tags), OFF, ASCII STL or OBJ face indices, the rest is
+// the file's content.
 // Every input must pass or end as an InputError naming the file, element and reason.
 #include <cstddef>
 #include <cstdint>
@@ -8,13 +9,17 @@
 
 #include "model/error.hpp"
 #include "model/io/format.hpp"
+#include "model/io/ply.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   const std::string content(reinterpret_cast<const char*>(data + 1), size - 1);
   try {
     switch (data[0] % 4) {
-      case 0: tessim::io::check_ply("fuzz.ply", content); break;
+      case 0:
+        tessim::io::check_ply("fuzz.ply", content);
+        (void)tessim::io::read_ply_tags("fuzz.ply", content);  // after the check, as import_mesh reads tags
+        break;
       case 1: tessim::io::check_off("fuzz.off", content); break;
       case 2: tessim::io::check_stl("fuzz.stl", content); break;
       default: {
