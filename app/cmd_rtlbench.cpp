@@ -66,7 +66,9 @@ void run(const RtlBenchArgs& a) {
   std::printf("%4s %6s %10s %16s %16s %10s\n", "N", "K", "cycles", "model cycles/s", "RTL cycles/s", "model/RTL");
   for (int k : a.gpe_cycles) {
     for (int n : a.int_blocks) {
-      auto rtl = rtl::make_rtl_unit("n" + std::to_string(n), 1);
+      std::string build = "n";  // appended apart: GCC 12 warns (-Wrestrict) about "n" + std::string
+      build += std::to_string(n);
+      auto rtl = rtl::make_rtl_unit(build, 1);
       sim::UnitConfig cfg = sim::with_hardware(rtl->config());
       cfg.tess_factor = a.tess_factor;
       cfg.gpe_cycles = k;

@@ -83,7 +83,7 @@ ADAPTIVE_KEYS = ("camera", "viewport", "pixels_per_segment")
 SWEEP_KEYS = ("mesh", "errors") + ADAPTIVE_KEYS
 # Statistics that are not columns: the config is already the parameter columns, the mesh path
 # is the `mesh` parameter.
-STATS_SKIP = ("config", "mesh")
+STATS_SKIP = ("config", "mesh", "units")  # units: docs/statistics.md, `tessim schema`
 
 
 class SpecError(Exception):
@@ -353,7 +353,7 @@ HEADLINE_STATS = ["triangles", "triangles_in", "vertices_out", "cycles", "cycles
                   "throughput", "bottleneck", "analytic.cycles_per_vertex", "analytic.bottleneck"]
 TRAIL_COLUMNS = ["message", "tessim_sha256"]
 TOP_LEVEL_STATS = {"triangles", "triangles_in", "vertices_out", "cycles", "cycles_per_vertex",
-                   "throughput", "bottleneck", "cpg_cycles_per_triangle", "wall_seconds"}
+                   "throughput", "bottleneck", "cpg_cycles_per_triangle", "wall_seconds", "schema_version"}
 
 
 def natural_key(name):

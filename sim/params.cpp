@@ -10,6 +10,7 @@
 #include "sim/error_bound.hpp"
 #include "sim/gpe.hpp"
 #include "sim/int_ops.hpp"
+#include "sim/simulate.hpp"
 #include "sim/unit.hpp"
 
 namespace tessim::sim {
@@ -249,6 +250,8 @@ nlohmann::json schema_json() {
       {"vertex_outputs", outputs},
       {"classes", {{"int_block", {"busy", "idle"}}, {"te", te}, {"cpg", cpg}, {"gpe", gpe}}},
       {"doc", "docs/microarchitecture.md §10, docs/statistics.md"},
+      {"stats_schema_version", kStatsSchemaVersion},
+      {"units", stats_units()},
   };
 
   // Per valid coordinate format (coordinate width <= 32), one row {coord_int_bits,

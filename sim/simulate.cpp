@@ -12,6 +12,7 @@
 #include "model/pattern.hpp"
 #include "sim/analytic.hpp"
 #include "sim/testbench.hpp"
+#include "sim/version.hpp"
 
 namespace tessim::sim {
 
@@ -291,6 +292,73 @@ nlohmann::json analytic_of(const SimResult& r) {
 
 }  // namespace
 
+nlohmann::json stats_units() {
+  constexpr const char* kCycles = "cycles";
+  constexpr const char* kShare = "fraction of cycles";
+  constexpr const char* kDiagonal = "fraction of the mesh's bounding-box diagonal";
+  nlohmann::json u = {
+      {"schema_version", "format version of this JSON"},
+      {"triangles", "triangles (of the mesh)"},
+      {"triangles_in", "triangles (the unit's input counter; equal to triangles after a whole run)"},
+      {"vertices_out", "vertices"},
+      {"cycles", kCycles},
+      {"cpg_cycles_per_triangle", "cycles/triangle"},
+      {"throughput", "vertices/cycle"},
+      {"cycles_per_vertex", "cycles/vertex"},
+      {"int.blocks[].busy", kCycles},
+      {"int.blocks[].idle", kCycles},
+      {"int.blocks[].utilisation", kShare},
+      {"int.busy", "cycles summed over the INT blocks (= operations issued)"},
+      {"int.ops_per_vertex", "operations/vertex"},
+      {"int.utilisation", "fraction of block-cycles"},
+      {"gpe.vertices", "vertices"},
+      {"limit.gpe_waited", kCycles},
+      {"warnings.degenerate_patches", "patches"},
+      {"warnings.zero_normals", "vertices"},
+      {"workload.vertices_per_patch.min", "vertices"},
+      {"workload.vertices_per_patch.mean", "vertices"},
+      {"workload.vertices_per_patch.max", "vertices"},
+      {"workload.vertices_per_patch_log2_histogram[]", "patches with 2^i..2^(i+1)-1 vertices"},
+      {"analytic.cycles_per_vertex", "cycles/vertex"},
+      {"analytic.bounds.cpg", "cycles/vertex"},
+      {"analytic.bounds.dpg", "cycles/vertex"},
+      {"analytic.bounds.gpe", "cycles/vertex"},
+      {"analytic.bounds.int_issue", "cycles/vertex"},
+      {"analytic.bounds.te_chain", "cycles/vertex"},
+      {"analytic.chain_span", "cycles (one vertex's dependence chain alone)"},
+      {"analytic.gpe_busy", kShare},
+      {"analytic.int_utilisation", "fraction of block-cycles"},
+      {"analytic.run_cycles", kCycles},
+      {"analytic.run_cycles_per_vertex", "cycles/vertex"},
+      {"analytic.throughput", "vertices/cycle"},
+      {"analytic.varying.no_buffer_cycles", kCycles},
+      {"analytic.varying.full_buffer_cycles", kCycles},
+      {"analytic.varying.no_buffer_cycles_per_vertex", "cycles/vertex"},
+      {"analytic.varying.full_buffer_cycles_per_vertex", "cycles/vertex"},
+      {"wall_seconds", "seconds (wall clock of the simulation)"},
+  };
+  // Every class counter is a number of cycles (docs/microarchitecture.md §10).
+  for (const char* c : {"busy", "blocked", "wait_gpe", "idle"}) u[std::string("cpg.") + c] = kCycles;
+  for (const char* c : {"busy", "stalled", "cpg", "starved"}) u[std::string("gpe.") + c] = kCycles;
+  for (const char* c : {"context_limited", "int_limited", "busy", "blocked_by_gpe", "starved_by_cpg", "idle", "pipeline"}) {
+    u[std::string("te.") + c] = kCycles;
+    u[std::string("limit.te_late.") + c] = "cycles (in the late vertex intervals)";
+  }
+  for (const char* c : {"te_starved_by_cpg", "te_blocked_by_gpe", "gpe_starved_by_te"}) u[std::string("stalls.") + c] = kCycles;
+  // --errors: against the mesh's float reference, and the arithmetic alone against its bound.
+  for (const std::string prefix : {"errors.", "errors.arithmetic."}) {
+    u[prefix + "vertices"] = "vertices";
+    u[prefix + "normals_compared"] = "vertices";
+    u[prefix + "position_max"] = kDiagonal;
+    u[prefix + "position_rms"] = kDiagonal;
+    u[prefix + "normal_angle_max"] = "radians";
+    u[prefix + "normal_angle_rms"] = "radians";
+  }
+  u["errors.arithmetic.beyond_bound"] = "vertices";
+  u["errors.arithmetic.saturated_vertices"] = "vertices";
+  return u;
+}
+
 nlohmann::json stats_json(const SimResult& r) {
   using nlohmann::json;
   const UnitStats& u = r.unit;
@@ -301,6 +369,8 @@ nlohmann::json stats_json(const SimResult& r) {
     busy_total += b.busy;
   }
   json j = {
+      {"schema_version", kStatsSchemaVersion},
+      {"tool", {{"name", "tessim"}, {"version", tool_version()}}},
       {"mesh", r.mesh},
       {"triangles", r.triangles},
       {"config", to_json(r.config)},
@@ -339,6 +409,7 @@ nlohmann::json stats_json(const SimResult& r) {
     j["errors"] = to_json(r.errors->mesh);
     j["errors"]["arithmetic"] = to_json(r.errors->arithmetic);
   }
+  j["units"] = stats_units();
   return j;
 }
 

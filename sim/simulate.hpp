@@ -104,6 +104,12 @@ double int_utilisation(const SimResult& r);    // sum of INT busy / (N cycles)
 std::string bottleneck(const SimResult& r);
 
 nlohmann::json stats_json(const SimResult& r);
+
+// The statistics JSON's format: its version (raised when a key changes meaning or goes away),
+// and the unit of every number in it by path, array elements as "[]" ("int.blocks[].busy").
+// stats_json() carries both, and `tessim schema` lists the units (docs/statistics.md).
+inline constexpr int kStatsSchemaVersion = 2;
+nlohmann::json stats_units();
 std::string summary(const SimResult& r);       // one screen for a hardware architect
 
 // Records the issue pattern of the first cycles and the retirement cycle of the first vertices:

@@ -1,0 +1,174 @@
+// tessim compare A.json B.json [--csv]: two runs' statistics (tessim sim --stats) side by side,
+// every configuration key that differs first, then every number with the ratio B/A and its unit.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.hpp"
+#include "model/error.hpp"
+#include "sim/simulate.hpp"
+
+namespace tessim::app {
+
+namespace {
+
+using nlohmann::json;
+
+struct CompareArgs {
+  std::string a, b;
+  bool csv = false;
+};
+
+json read_stats(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "file", "cannot be opened");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(path, "JSON", e.what());
+  }
+  if (!j.is_object() || !j.contains("cycles") || !j.contains("config"))
+    throw InputError(path, "statistics", "not the statistics of `tessim sim --stats` (no cycles or config)");
+  return j;
+}
+
+// Every number and string of `j` by its path; array elements are numbered ("int.blocks.1.busy")
+// and looked up in the units table as "[]".
+void flatten(const json& j, const std::string& path, std::map<std::string, json>& out) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) flatten(v, path.empty() ? k : path + "." + k, out);
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) flatten(j[i], path + "." + std::to_string(i), out);
+  } else {
+    out[path] = j;
+  }
+}
+
+std::string unit_key(const std::string& path) {
+  std::string key;
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    const std::size_t dot = path.find('.', start);
+    const std::string part = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+    if (index) key += "[]";
+    else key += (key.empty() ? "" : ".") + part;
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return key;
+}
+
+std::string text(const json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_float()) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v.get<double>());
+    return buf;
+  }
+  return v.dump();
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+void run(const CompareArgs& args) {
+  const json a = read_stats(args.a), b = read_stats(args.b);
+  std::map<std::string, json> fa, fb;
+  flatten(a, "", fa);
+  flatten(b, "", fb);
+  const json units = sim::stats_units();
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : fa) keys.push_back(k);
+  for (const auto& [k, v] : fb)
+    if (!fa.contains(k)) keys.push_back(k);
+
+  struct Row {
+    std::string key, va, vb, ratio, unit;
+  };
+  std::vector<Row> config, stats;
+  for (const std::string& k : keys) {
+    if (k.rfind("units.", 0) == 0 || k.rfind("tool.", 0) == 0) continue;
+    const json* x = fa.contains(k) ? &fa.at(k) : nullptr;
+    const json* y = fb.contains(k) ? &fb.at(k) : nullptr;
+    Row r{k, x ? text(*x) : "-", y ? text(*y) : "-", "", ""};
+    if (k.rfind("config.", 0) == 0 || k == "mesh") {
+      if (r.va != r.vb) config.push_back(r);
+      continue;
+    }
+    if (x && y && x->is_number() && y->is_number()) {
+      const double p = x->get<double>(), q = y->get<double>();
+      if (p != 0) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.4f", q / p);
+        r.ratio = buf;
+      } else {
+        r.ratio = q == 0 ? "=" : "-";
+      }
+    }
+    const std::string uk = unit_key(k);
+    if (units.contains(uk)) r.unit = units[uk].get<std::string>();
+    stats.push_back(r);
+  }
+
+  if (args.csv) {
+    std::cout << "key,a,b,ratio_b_over_a,unit\n";
+    for (const auto* rows : {&config, &stats})
+      for (const Row& r : *rows)
+        std::cout << csv_field(r.key) << "," << csv_field(r.va) << "," << csv_field(r.vb) << "," << r.ratio << ","
+                  << csv_field(r.unit) << "\n";
+    return;
+  }
+  auto tool = [](const json& j) {
+    return j.contains("tool") ? j["tool"].value("version", std::string("?")) : std::string("before schema 2");
+  };
+  std::printf("A  %s  (tessim %s)\nB  %s  (tessim %s)\n", args.a.c_str(), tool(a).c_str(), args.b.c_str(),
+              tool(b).c_str());
+  if (a.value("schema_version", 1) != b.value("schema_version", 1))
+    std::printf("note: statistics schema versions differ (%d and %d)\n", a.value("schema_version", 1),
+                b.value("schema_version", 1));
+  std::size_t width = 10;
+  for (const auto* rows : {&config, &stats})
+    for (const Row& r : *rows) width = std::max(width, r.key.size());
+  std::printf("\n%-*s  %16s  %16s  %8s\n", static_cast<int>(width), config.empty() ? "configuration: the same" : "configuration",
+              "A", "B", "");
+  for (const Row& r : config)
+    std::printf("%-*s  %16s  %16s\n", static_cast<int>(width), r.key.c_str(), r.va.c_str(), r.vb.c_str());
+  std::printf("\n%-*s  %16s  %16s  %8s  %s\n", static_cast<int>(width), "statistic", "A", "B", "B/A", "unit");
+  for (const Row& r : stats) {
+    if (r.va.size() > 16 || r.vb.size() > 16) {  // text (the bottleneck line): on lines of their own
+      std::printf("%-*s  A: %s\n%-*s  B: %s\n", static_cast<int>(width), r.key.c_str(), r.va.c_str(),
+                  static_cast<int>(width), "", r.vb.c_str());
+      continue;
+    }
+    std::printf("%-*s  %16s  %16s  %8s  %s\n", static_cast<int>(width), r.key.c_str(), r.va.c_str(), r.vb.c_str(),
+                r.ratio.c_str(), r.unit.c_str());
+  }
+}
+
+}  // namespace
+
+void register_compare(CLI::App& app) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "compare", "Two runs' statistics (tessim sim --stats) side by side: differing configuration, every figure "
+                 "with the ratio B/A and its unit");
+  sub->add_option("a", args->a, "statistics JSON of run A")->required();
+  sub->add_option("b", args->b, "statistics JSON of run B")->required();
+  sub->add_flag("--csv", args->csv, "print CSV (key, a, b, ratio_b_over_a, unit) instead of a table");
+  sub->callback([args]() { run(*args); });
+}
+
+}  // namespace tessim::app

@@ -1,0 +1,108 @@
+// The statistics as a data product: every number of `tessim sim --stats` has a unit, the file
+// names its format version and the tool, and `tessim compare` puts two runs side by side.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/simulate.hpp"
+#include "tests/support/run_tessim.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace tessim {
+namespace {
+
+using nlohmann::json;
+
+const char* const kMesh = "/usr/share/assimp/models/STL/sphereWithHole.stl";
+
+json read_json(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return json::parse(in);
+}
+
+// Numbers by their unit-table path ("int.blocks[].busy"), configuration and units left out.
+void numeric_paths(const json& j, const std::string& path, std::set<std::string>& out) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) {
+      if (path.empty() && (k == "config" || k == "units")) continue;
+      numeric_paths(v, path.empty() ? k : path + "." + k, out);
+    }
+  } else if (j.is_array()) {
+    for (const auto& v : j) numeric_paths(v, path + "[]", out);
+  } else if (j.is_number()) {
+    out.insert(path);
+  }
+}
+
+TEST(StatsJson, EveryNumberHasAUnitAndEveryUnitANumber) {
+  testing::TempDir dir;
+  const auto plain = dir.path() / "plain.json", rich = dir.path() / "rich.json";
+  ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "3", "--stats", plain.string()}, dir.path()).status, 0);
+  // --errors and adaptive factors add the error and varying-workload figures.
+  const auto r = testing::run_tessim({"sim", kMesh, "--errors", "--adaptive", "screen", "--camera",
+                                      "eye=1.5,1.5,5,target=1.5,1.5,1.5", "--stats", rich.string()},
+                                     dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json units = sim::stats_units();
+  std::set<std::string> seen;
+  for (const auto& p : {plain, rich}) {
+    const json j = read_json(p);
+    EXPECT_EQ(j["schema_version"], sim::kStatsSchemaVersion);
+    EXPECT_EQ(j["tool"]["name"], "tessim");
+    EXPECT_FALSE(j["tool"]["version"].get<std::string>().empty());
+    EXPECT_EQ(j["units"], units);
+    std::set<std::string> paths;
+    numeric_paths(j, "", paths);
+    for (const std::string& path : paths) EXPECT_TRUE(units.contains(path)) << path << " has no unit";
+    seen.insert(paths.begin(), paths.end());
+  }
+  for (const auto& [path, unit] : units.items()) EXPECT_TRUE(seen.contains(path)) << path << " is in no statistics";
+  // `tessim schema` lists the same table.
+  const auto s = testing::run_tessim({"schema"}, dir.path());
+  ASSERT_EQ(s.status, 0);
+  EXPECT_EQ(json::parse(s.out)["statistics"]["units"], units);
+}
+
+TEST(CompareCli, TwoRunsSideBySideWithRatios) {
+  testing::TempDir dir;
+  const auto a = dir.path() / "a.json", b = dir.path() / "b.json";
+  ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "4", "--stats", a.string()}, dir.path()).status, 0);
+  ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "4", "--cpg-lanes", "3", "--stats", b.string()}, dir.path()).status,
+            0);
+  const json ja = read_json(a), jb = read_json(b);
+  auto r = testing::run_tessim({"compare", a.string(), b.string()}, dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("config.cpg_lanes"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("config.int_blocks"), std::string::npos) << "only differing configuration keys";
+  char ratio[32];
+  std::snprintf(ratio, sizeof ratio, "%.4f", jb["cycles"].get<double>() / ja["cycles"].get<double>());
+  const std::size_t line = r.out.find("\ncycles ");
+  ASSERT_NE(line, std::string::npos) << r.out;
+  const std::string cycles_line = r.out.substr(line + 1, r.out.find('\n', line + 1) - line - 1);
+  EXPECT_NE(cycles_line.find(std::to_string(ja["cycles"].get<std::uint64_t>())), std::string::npos) << cycles_line;
+  EXPECT_NE(cycles_line.find(std::to_string(jb["cycles"].get<std::uint64_t>())), std::string::npos) << cycles_line;
+  EXPECT_NE(cycles_line.find(ratio), std::string::npos) << cycles_line;
+  EXPECT_NE(cycles_line.find("cycles"), std::string::npos);
+
+  r = testing::run_tessim({"compare", a.string(), b.string(), "--csv"}, dir.path());
+  ASSERT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("key,a,b,ratio_b_over_a,unit\n", 0), 0u);
+  EXPECT_NE(r.out.find("\ncycles," + std::to_string(ja["cycles"].get<std::uint64_t>()) + "," +
+                       std::to_string(jb["cycles"].get<std::uint64_t>()) + "," + ratio + ",cycles\n"),
+            std::string::npos)
+      << r.out;
+
+  // Not statistics: bad input, named.
+  const auto bad = dir.write("bad.json", R"({"x": 1})");
+  r = testing::run_tessim({"compare", a.string(), bad.string()}, dir.path());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find(bad.string() + ": statistics: "), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+}  // namespace
+}  // namespace tessim
