@@ -252,8 +252,8 @@ std::string format_report(const CosimReport& r, const CosimOptions& o) {
   if (r.reference.stats.vertices) {
     const sim::ErrorStats& e = r.reference.stats;
     os << "  vs float reference: max position error " << e.position_max << " of the diagonal (rms "
-       << e.position_rms << "), max normal angle " << e.normal_angle_max * 180.0 / M_PI << " deg (rms "
-       << e.normal_angle_rms * 180.0 / M_PI << ")";
+       << e.position_rms << "), max normal angle " << e.normal_angle_max << " rad (rms " << e.normal_angle_rms
+       << " rad)";  // radians, as in the statistics and the study (docs/statistics.md)
     // After a divergence the run stopped early: say how far the check went, not that all is well.
     os << (r.reference.beyond_bound ? ", " + std::to_string(r.reference.beyond_bound) + " beyond bound: " + r.reference.worst
            : r.divergence ? ", the " + std::to_string(e.vertices) + (e.vertices == 1 ? " vertex" : " vertices") +

@@ -36,7 +36,8 @@ flip-flops, transistors, LUT/FF/DSP/CARRY4 add; the depth is the larger of the t
 results are registered before they leave it). Such rows have cost_composed = 1
 (docs/results/load-balancing.md says how close the composition is to a whole-unit synthesis).
 
-Writes OUT.csv (default: RESULTS.csv in place) and its JSON twin, like scripts/sweep.py.
+Writes OUT.csv (default: RESULTS-costs.csv beside RESULTS.csv; --in-place overwrites RESULTS.csv)
+and its JSON twin, like scripts/sweep.py.
 """
 
 import argparse
@@ -226,7 +227,8 @@ def cost_columns(result, n_blocks):
 def main(argv):
     ap = argparse.ArgumentParser(prog="costs.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("results", help="results CSV of scripts/sweep.py (its JSON twin is read when present)")
-    ap.add_argument("-o", "--output", help="output CSV (default: overwrite RESULTS)")
+    ap.add_argument("-o", "--output", help="output CSV (default: RESULTS-costs.csv beside RESULTS)")
+    ap.add_argument("--in-place", action="store_true", help="overwrite RESULTS (and its JSON twin) instead")
     ap.add_argument("--where", nargs="*", action="append", metavar="KEY=V[,V...]",
                     help="cost only the configurations of rows matching all of these (repeat: any group)")
     ap.add_argument("--compose-cpg", action="store_true",
@@ -362,7 +364,8 @@ def main(argv):
         if selected(r) and rtl_config(r) in results:
             r.update(cost_columns(results[rtl_config(r)], int(r["int_blocks"])))
             costed += 1
-    out = args.output or args.results
+    out = args.output or (args.results if args.in_place else
+                          str(Path(args.results).with_name(Path(args.results).stem + "-costs.csv")))
     sweep.write_results(rows, out, sweep.param_order(sch))
     print(f"costs.py: cost columns on {costed} of {len(rows)} rows -> {out}", file=sys.stderr)
     return 0

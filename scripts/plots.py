@@ -1,13 +1,21 @@
 #!/usr/bin/python3
-"""Figures and tables of the load-balancing study from a sweep's results (docs/results/).
+"""Figures and tables of a sweep's results (scripts/sweep.py): the load-balancing study's, or any
+one figure of any sweep.
 
-    plots.py RESULTS.csv [--out DIR]
+    plots.py RESULTS.csv --out DIR                      the study (docs/results/load-balancing.md)
+    plots.py RESULTS.csv --x KEY --y KEY [--hue KEY] [--facet KEY] [--where KEY=V[,V...] ...]
+             [--logx] [--logy] [-o FIG.png]             one figure of any sweep
 
 RESULTS.csv is the output of scripts/sweep.py, optionally with the cost_* columns of
-scripts/costs.py. Rows are picked by the grid names of the specs in scripts/sweeps/ (column
-`grids`) and by parameter values; a figure whose rows are absent is skipped with a note.
-Writes into DIR (default docs/results): one PNG and one SVG per figure, and tables.md with the
-numbers behind the figures (smallest balanced N per K, Pareto front, bus traffic, errors).
+scripts/costs.py. The study picks rows by the grid names of the specs in scripts/sweeps/ (column
+`grids`) and by parameter values; a figure whose rows are absent is skipped with a note. It
+writes into DIR (default ./plots, never the committed docs/results unless asked: results.sh
+passes --out): one PNG and one SVG per figure, and tables.md with the numbers behind the figures.
+
+A figure of any sweep: KEY is any column (a parameter such as int_blocks, a statistic such as
+throughput or te.starved_by_cpg, a cost such as cost_unit_transistors); --hue draws one line per
+value, --facet one panel per value, --where keeps matching rows; rows that agree on every other
+key are averaged (the figure says how many); --where grid=NAME keeps the rows of a spec's grid. Writes FIG.png (default ./plot.png) and its SVG.
 """
 
 import argparse
@@ -1051,10 +1059,90 @@ def mesh_info_reader(tessim):
     return info
 
 
+def generic_figure(rows, args):
+    """One figure of any sweep: --y against --x, a line per --hue value, a panel per --facet value."""
+    where = []
+    for group in args.where:
+        cond = {}
+        for item in group:
+            if "=" not in item:
+                print(f"plots.py: error: --where '{item}': expected KEY=VALUE[,VALUE...]", file=sys.stderr)
+                return 2
+            key, values = item.split("=", 1)
+            cond[key] = {parse_value(v) for v in values.split(",")}
+        where.append(cond)
+    keys = [k for k in (args.x, args.y, args.hue, args.facet) if k]
+    columns = set().union(*(r.keys() for r in rows))
+    missing = [k for k in keys + [k for w in where for k in w] if k not in columns and k != "grid"]
+    if missing:
+        print(f"plots.py: error: no column {', '.join(sorted(set(missing)))} in {args.results}", file=sys.stderr)
+        return 2
+    def matches(r, key, values):  # grid=NAME: the row belongs to that grid of its spec
+        return bool(r["grid_set"] & {str(v) for v in values}) if key == "grid" else r.get(key) in values
+
+    sel = [r for r in rows if (not where or any(all(matches(r, k, v) for k, v in w.items()) for w in where))
+           and all(r.get(k) is not None for k in keys)]
+    if not sel:
+        print("plots.py: error: no row has all of " + ", ".join(keys) + (" and matches --where" if where else ""),
+              file=sys.stderr)
+        return 2
+    facets = distinct(sel, args.facet) if args.facet else [None]
+    hues = distinct(sel, args.hue) if args.hue else [None]
+    cols = min(3, len(facets))
+    nrows = (len(facets) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(4.6 * cols, 3.6 * nrows), squeeze=False)
+    averaged = 0
+    for ax, fv in zip(axes.flat, facets):
+        for i, hv in enumerate(hues):
+            groups = defaultdict(list)
+            for r in sel:
+                if (args.facet is None or r[args.facet] == fv) and (args.hue is None or r[args.hue] == hv):
+                    groups[r[args.x]].append(r[args.y])
+            if not groups:
+                continue
+            xs = sorted(groups)
+            averaged = max(averaged, max(len(v) for v in groups.values()))
+            ax.plot(xs, [sum(groups[x]) / len(groups[x]) for x in xs], "o-", ms=3, color=f"C{i % 10}",
+                    label=f"{args.hue} = {hv}" if args.hue else None)
+        ax.set_xlabel(args.x)
+        ax.set_ylabel(args.y)
+        if args.logx:
+            ax.set_xscale("log")
+        if args.logy:
+            ax.set_yscale("log")
+        if args.facet:
+            ax.set_title(f"{args.facet} = {fv}", fontsize=8)
+        if args.hue:
+            ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(facets):]:
+        ax.set_visible(False)
+    note = f"; points averaged over up to {averaged} rows" if averaged > 1 else ""
+    fig.suptitle(f"{args.y} against {args.x} ({len(sel)} rows of {Path(args.results).name}{note})", fontsize=9)
+    fig.tight_layout()
+    out = Path(args.output)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    meta_png, meta_svg = {"Software": None}, {"Date": None}
+    fig.savefig(out, bbox_inches="tight", metadata=meta_png if out.suffix == ".png" else meta_svg)
+    if out.suffix == ".png":
+        fig.savefig(out.with_suffix(".svg"), bbox_inches="tight", metadata=meta_svg)
+    plt.close(fig)
+    print(f"plots.py: wrote {out} ({len(sel)} rows)", file=sys.stderr)
+    return 0
+
+
 def main(argv):
     ap = argparse.ArgumentParser(description="Figures and tables of the load-balancing study.")
     ap.add_argument("results", help="results CSV of scripts/sweep.py (with cost_* columns of scripts/costs.py)")
-    ap.add_argument("--out", default=str(REPO / "docs" / "results"), help="output directory")
+    ap.add_argument("--out", default="plots", help="output directory of the study's figures (default ./plots)")
+    ap.add_argument("--x", help="one figure of any sweep: the column on the x axis")
+    ap.add_argument("--y", help="... on the y axis")
+    ap.add_argument("--hue", help="... one line per value of this column")
+    ap.add_argument("--facet", help="... one panel per value of this column")
+    ap.add_argument("--where", nargs="*", action="append", default=[], metavar="KEY=V[,V...]",
+                    help="... only rows with these values (repeat: any group)")
+    ap.add_argument("--logx", action="store_true")
+    ap.add_argument("--logy", action="store_true")
+    ap.add_argument("-o", "--output", default="plot.png", help="... the figure (.png; an .svg is written beside it)")
     ap.add_argument("--tessim", default=str(REPO / "build" / "bin" / "tessim"),
                     help="tessim binary, for mesh bounding boxes (error bound, bus traffic)")
     args = ap.parse_args(argv)
@@ -1062,6 +1150,11 @@ def main(argv):
     if not rows:
         print(f"plots.py: error: {args.results} has no rows with status ok", file=sys.stderr)
         return 2
+    if args.x or args.y:
+        if not (args.x and args.y):
+            print("plots.py: error: --x and --y go together", file=sys.stderr)
+            return 2
+        return generic_figure(rows, args)
     try:
         source = str(Path(args.results).resolve().relative_to(REPO))
     except ValueError:

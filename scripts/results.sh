@@ -78,7 +78,7 @@ mkdir -p "$work" "$out"
 start=$SECONDS
 "$python" scripts/sweep.py "scripts/sweeps/$set_name.json" -o "$work/results.csv" --cache "$work/cache" \
   --jobs "$jobs" --tessim "$tessim"
-"$python" scripts/costs.py "$work/results.csv" --tessim "$tessim" --cache "$cost_cache" "${cost_filter[@]}" "${cost_mode[@]}"
+"$python" scripts/costs.py "$work/results.csv" --in-place --tessim "$tessim" --cache "$cost_cache" "${cost_filter[@]}" "${cost_mode[@]}"
 cp "$work/results.csv" "$out/results.csv"
 "$python" scripts/plots.py "$out/results.csv" --out "$out" --tessim "$tessim"
 echo "results.sh: $set_name set done in $((SECONDS - start)) s: $out" >&2

@@ -6,7 +6,8 @@ direct `tessim sim --stats` run of the same point is a column with the same valu
 configuration key is a parameter column; the error columns of the point that asks for them are
 within the documented bound; a rerun takes everything from the cache and writes the same CSV; a
 lost cache entry is recomputed alone; two shards merged, a Slurm job array run task by task and
-a Dask cluster of two worker processes give the same rows as the plain run.
+a Dask cluster of two worker processes give the same rows as the plain run; plots.py draws a
+figure of these rows (--x, --y, --hue) and names an unknown column.
 """
 
 import argparse
@@ -77,6 +78,19 @@ def main():
         if not (tmp / "results.json").exists() or len(json.loads((tmp / "results.json").read_text())) != 4:
             fail("results.json missing or not 4 rows")
 
+        # plots.py draws one figure of any sweep: a line per --hue value, rows averaged; an unknown
+        # column is an error naming it, and nothing is written.
+        plots = HERE.parent / "plots.py"
+        fig = tmp / "fig" / "cycles.png"
+        proc = subprocess.run([sys.executable, str(plots), str(out), "--x", "int_blocks", "--y", "cycles",
+                               "--hue", "errors", "-o", str(fig)], capture_output=True, text=True, cwd=tmp)
+        if proc.returncode != 0 or not fig.exists() or not fig.with_suffix(".svg").exists():
+            fail(f"plots.py --x/--y: exit {proc.returncode}, {proc.stderr}")
+        proc = subprocess.run([sys.executable, str(plots), str(out), "--x", "int_blocks", "--y", "no_such_column",
+                               "-o", str(tmp / "bad.png")], capture_output=True, text=True, cwd=tmp)
+        if proc.returncode != 2 or "no_such_column" not in proc.stderr or (tmp / "bad.png").exists():
+            fail(f"plots.py with an unknown column: exit {proc.returncode}, {proc.stderr}")
+
         # Every statistic of a direct run of the last point (N = 2, errors) is a column, same value.
         row = rows[-1]
         spec = json.loads(SPEC.read_text())
@@ -92,7 +106,7 @@ def main():
             if not same(row[key], value):
                 fail(f"parameter {key}: CSV {row[key]!r}, tessim {value!r}")
         flat = {}
-        flatten("", {k: v for k, v in stats.items() if k not in ("config", "mesh")}, flat)
+        flatten("", {k: v for k, v in stats.items() if k not in ("config", "mesh", "units")}, flat)
         for key, value in flat.items():
             if key not in row:
                 fail(f"statistic column '{key}' missing")
