@@ -12,6 +12,7 @@
 #include "model/mesh_io.hpp"
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"
+#include "model/weld.hpp"
 #include "app/commands.hpp"
 #include "app/config_flags.hpp"
 #include "sim/config.hpp"
@@ -31,6 +32,7 @@ struct SimArgs {
   std::uint64_t trace_cycles = 20000;
   std::string trace_window;  // START:END, instead of the first trace_cycles cycles
   std::string output;
+  bool weld = false;
   bool schedule = false;
   bool errors = false;
   bool no_fast_forward = false;
@@ -77,7 +79,24 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   hooks.measure_errors = a.errors;
   hooks.fast_forward = !a.no_fast_forward;
   std::unique_ptr<MeshWriter> writer;
-  if (!a.output.empty()) {
+  std::unique_ptr<WeldingWriter> welder;
+  std::vector<WeldKey> keys;
+  std::vector<std::uint32_t> indices;
+  int indices_L = 0;
+  if (!a.output.empty() && a.weld) {
+    // Shared vertices once: the unit computes them bit for bit alike in both patches of an edge.
+    welder = std::make_unique<WeldingWriter>();
+    hooks.on_patch = [&](const sim::PatchOut& p) {
+      keys.clear();
+      for (std::size_t i = 0; i < p.positions.size(); ++i) keys.push_back(bits_key(p.positions[i], p.normals[i]));
+      if (p.L != indices_L) {
+        indices_L = p.L;
+        indices.clear();
+        for (const glm::uvec3& t : pattern_triangles(p.L)) indices.insert(indices.end(), {t.x, t.y, t.z});
+      }
+      welder->add_patch(p.positions, p.normals, keys, indices);
+    };
+  } else if (!a.output.empty()) {
     writer = std::make_unique<MeshWriter>(a.output, out_vertices, out_triangles);
     hooks.on_patch = [&](const sim::PatchOut& p) {
       writer->add_patch(p.L, p.positions.data(), p.normals.data());
@@ -103,9 +122,14 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     if (!stats->stream().flush()) throw InputError(a.stats, "output", "write failed");
   }
   if (writer) writer->finish();
+  if (welder) welder->write(a.output);
   if (trace) trace->finish();
   if (stats) stats->commit();
   std::cout << sim::summary(result);
+  if (welder)
+    std::printf("welded   %llu output vertices into %llu distinct vertices (bit-identical positions and normals)\n",
+                static_cast<unsigned long long>(welder->vertices_in()),
+                static_cast<unsigned long long>(welder->vertices_out()));
   if (schedule) {
     std::cout << "\nissue schedule (v<vertex>.<op>, first cycles from the first issue):\n"
               << schedule->table(cfg.int_blocks);
@@ -132,7 +156,11 @@ void register_sim(CLI::App& app) {
   sub->add_option("--trace-window", args->trace_window,
                   "START:END: record cycles START to END in the trace instead (docs/statistics.md, Traces)")
       ->excludes(trace_cycles);
-  sub->add_option("-o,--output", args->output, "write the tessellated mesh (.ply or .obj)");
+  auto* output = sub->add_option("-o,--output", args->output, "write the tessellated mesh (.ply or .obj)");
+  sub->add_flag("--weld", args->weld,
+                "with -o: write the vertices that patches share once (bit-identical fixed-point positions and "
+                "normals)")
+      ->needs(output);
   sub->add_flag("--schedule", args->schedule, "print the issue pattern of the first vertices");
   add_adaptive_options(*sub, args->adaptive, "sim");
   sub->add_flag("--errors", args->errors,

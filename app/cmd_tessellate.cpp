@@ -1,6 +1,8 @@
 // tessim tessellate: the float64 reference tessellation of a whole mesh, streamed to PLY or OBJ.
 #include <algorithm>
 #include <cinttypes>
+#include <span>
+#include <vector>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -11,6 +13,7 @@
 #include "model/normal_mode.hpp"
 #include "model/pattern.hpp"
 #include "model/tessellate.hpp"
+#include "model/weld.hpp"
 #include "app/commands.hpp"
 
 namespace tessim::app {
@@ -22,6 +25,7 @@ struct TessellateArgs {
   PatternOptions pattern;
   std::string normals = "quadratic";
   std::string output;
+  bool weld = false;
 };
 
 void run_tessellate(const TessellateArgs& args) {
@@ -38,12 +42,37 @@ void run_tessellate(const TessellateArgs& args) {
   const Mesh mesh = load_mesh(args.mesh);
   PatternCache patterns(settings);
   const TessellationCounts counts = count_tessellation(mesh, patterns);
-  MeshWriter writer(args.output, counts.vertices, counts.triangles);
-  const TessellationSummary summary = tessellate_mesh(mesh, settings, mode, [&](const PatchView& patch) {
-    if (patch.L > 0) writer.add_patch(patch.L, patch.positions.data(), patch.normals.data());
-    else writer.add_patch(patch.positions, patch.normals, patch.indices);
-  });
-  writer.finish();
+  TessellationSummary summary;
+  if (args.weld) {
+    // Shared corners and edge points once (model/weld.hpp); the mesh is held until it is written.
+    WeldingWriter writer;
+    std::vector<WeldKey> keys;
+    std::vector<std::uint32_t> uniform_indices;
+    int uniform_L = 0;
+    summary = tessellate_mesh(mesh, settings, mode, [&](const PatchView& patch) {
+      patch_weld_keys(mesh, patch, keys);
+      std::span<const std::uint32_t> indices = patch.indices;
+      if (patch.L > 0) {
+        if (patch.L != uniform_L) {
+          uniform_L = patch.L;
+          uniform_indices.clear();
+          for (const glm::uvec3& t : pattern_triangles(patch.L)) uniform_indices.insert(uniform_indices.end(), {t.x, t.y, t.z});
+        }
+        indices = uniform_indices;
+      }
+      writer.add_patch(patch.positions, patch.normals, keys, indices);
+    });
+    writer.write(args.output);
+    std::printf("welded: %" PRIu64 " patch vertices into %" PRIu64 " distinct vertices\n", writer.vertices_in(),
+                writer.vertices_out());
+  } else {
+    MeshWriter writer(args.output, counts.vertices, counts.triangles);
+    summary = tessellate_mesh(mesh, settings, mode, [&](const PatchView& patch) {
+      if (patch.L > 0) writer.add_patch(patch.L, patch.positions.data(), patch.normals.data());
+      else writer.add_patch(patch.positions, patch.normals, patch.indices);
+    });
+    writer.finish();
+  }
 
   const MeshStats stats = mesh_stats(mesh);
   if (summary.degenerate_triangles > 0 || summary.degenerate_edges > 0 || stats.normal_fallbacks > 0)
@@ -74,6 +103,9 @@ void register_tessellate(CLI::App& app) {
   cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
       ->capture_default_str();
   cmd->add_option("-o,--output", args->output, "Output mesh: .ply (binary, double precision) or .obj")->required();
+  cmd->add_flag("--weld", args->weld,
+                "Write the vertices that patches share (corners, edge points) once, found by their place on the "
+                "input mesh and exact barycentric weights");
   cmd->callback([args] { run_tessellate(*args); });
 }
 

@@ -192,16 +192,18 @@ CosimReport run_cosim_until(const std::vector<sim::TriangleFx>& stream, const Co
   rtl::check_config(*rtl, opts.unit);  // throws InputError naming the first parameter that differs
 
   // An explicit window is recorded in the run itself, passing or not.
-  const std::optional<WaveWindow> window = opts.wave.empty() ? std::nullopt : opts.wave_cycles;
-  if (window) {
+  const bool record = !opts.wave.empty() && opts.wave_cycles.has_value();
+  const WaveWindow window = record ? *opts.wave_cycles : WaveWindow{};
+  if (record) {
     rtl->open_wave(wave_recording_path(opts.wave));
     rtl->set_wave_enabled(false);
   }
-  LockstepRun run = lockstep(stream, opts, *rtl, true, window, stop_before);
+  LockstepRun run = lockstep(stream, opts, *rtl, true, record ? std::optional<WaveWindow>(window) : std::nullopt,
+                             stop_before);
   CosimReport rep = std::move(run.report);
-  if (window) {
+  if (record) {
     rtl->close_wave();
-    finish_wave(opts.wave, rtl->config(), window->from,
+    finish_wave(opts.wave, rtl->config(), window.from,
                 rep.divergence ? std::optional<std::uint64_t>(rep.divergence->cycle) : std::nullopt);
     rep.wave = opts.wave;
   } else if (rep.divergence && !opts.wave.empty()) {

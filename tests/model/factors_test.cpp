@@ -5,6 +5,8 @@
 // inside each patch).
 #include <gtest/gtest.h>
 
+#include "tests/support/distinct_points.hpp"
+
 #include <array>
 #include <cmath>
 #include <map>
@@ -57,42 +59,6 @@ TEST(AdaptiveFactors, DependOnTheEdgeOnlyNotOnItsOrder) {
   far_cam.eye = {0.0, 0.0, 4.0};
   const float near_f = adaptive_edge_factor(near_cam, 4.0, a, b), far_f = adaptive_edge_factor(far_cam, 4.0, a, b);
   EXPECT_NEAR(near_f / far_f, 2.0, 1e-6);
-}
-
-// Welds points within `tolerance` (grid cells of that size, neighbours searched).
-std::size_t distinct_points(const std::vector<glm::dvec3>& points, double tolerance) {
-  struct Key {
-    std::int64_t x, y, z;
-    bool operator==(const Key&) const = default;
-  };
-  struct Hash {
-    std::size_t operator()(const Key& k) const {
-      // Unsigned: the products wrap by definition (signed overflow would be undefined).
-      return static_cast<std::size_t>(static_cast<std::uint64_t>(k.x) * 73856093u ^
-                                      static_cast<std::uint64_t>(k.y) * 19349663u ^
-                                      static_cast<std::uint64_t>(k.z) * 83492791u);
-    }
-  };
-  std::unordered_map<Key, std::vector<glm::dvec3>, Hash> cells;
-  std::size_t distinct = 0;
-  for (const glm::dvec3& p : points) {
-    const Key k{static_cast<std::int64_t>(std::floor(p.x / tolerance)), static_cast<std::int64_t>(std::floor(p.y / tolerance)),
-                static_cast<std::int64_t>(std::floor(p.z / tolerance))};
-    bool found = false;
-    for (std::int64_t dx = -1; dx <= 1 && !found; ++dx)
-      for (std::int64_t dy = -1; dy <= 1 && !found; ++dy)
-        for (std::int64_t dz = -1; dz <= 1 && !found; ++dz) {
-          auto it = cells.find(Key{k.x + dx, k.y + dy, k.z + dz});
-          if (it == cells.end()) continue;
-          for (const glm::dvec3& q : it->second)
-            if (glm::length(p - q) <= tolerance) found = true;
-        }
-    if (!found) {
-      cells[k].push_back(p);
-      ++distinct;
-    }
-  }
-  return distinct;
 }
 
 class AdaptiveMesh : public ::testing::TestWithParam<Partitioning> {};
@@ -153,7 +119,7 @@ TEST_P(AdaptiveMesh, IsCrackFree) {
   for (const auto& [edge, weights] : edge_points) expected += weights.size();
 
   const double diagonal = bounding_box(mesh).diagonal();
-  EXPECT_EQ(distinct_points(points, 1e-12 * diagonal), expected);
+  EXPECT_EQ(testing::distinct_points(points, 1e-12 * diagonal), expected);
   // The camera makes the factors vary: a real test of stitching, not of one factor everywhere.
   EXPECT_GT(factors_seen.size(), 100u);
 }
