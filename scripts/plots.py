@@ -493,6 +493,7 @@ def fig_cpg_pareto(costed, variants, pL, Ks, out):
     axes[0][0].legend(fontsize=6)
     fig.suptitle("Throughput against the unit's transistors over CPG variant × N (line: Pareto front; "
                  "label Ec×r or S for the sequential CPG)", fontsize=9)
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
     out.save(fig, "cpg_pareto")
     out.table("Pareto front over CPG variant and N (quadratic normals)",
               ["K", "L", "configuration", "unit Mtr", "vertices/cycle", "vertices/cycle/Mtr"], front_rows)
@@ -563,6 +564,7 @@ def fig_cpg_variants(rows, out):
 
     # The cheapest unit that reaches the GPE's rate, per L.
     costed = [r for r in g if r.get("cost_unit_transistors") is not None]
+    seq_depth = {r["int_blocks"]: r["cost_unit_depth"] for r in costed if cpg_variant(r) == (1, 1)}
     table = []
     for K in distinct(g, "gpe_cycles"):
         for mode in distinct(g, "normals"):
@@ -572,17 +574,24 @@ def fig_cpg_variants(rows, out):
                 seq = [r for r in ok if cpg_variant(r) == (1, 1)]
                 ok_costed = [r for r in ok if r.get("cost_unit_transistors") is not None]
                 best = min(ok_costed, key=lambda r: r["cost_unit_transistors"]) if ok_costed else None
+                # The same, among units no deeper than with the sequential CPG (no slower clock).
+                flat = [r for r in ok_costed if r["cost_unit_depth"] <= seq_depth.get(r["int_blocks"], 0)]
+                best_flat = min(flat, key=lambda r: r["cost_unit_transistors"]) if flat else None
                 fastest = max(pts, key=lambda r: r["throughput"]) if pts else None
                 table.append([K, mode, L,
                               f"{cpg_label(cpg_variant(best))}, N = {best['int_blocks']}" if best else "none",
                               fmt(best["cost_unit_transistors"] / 1e6, 4) if best else "–",
                               fmt(best["throughput"] * K, 4) if best else "–",
+                              best["cost_unit_depth"] if best else "–",
+                              f"{cpg_label(cpg_variant(best_flat))}, N = {best_flat['int_blocks']} "
+                              f"({fmt(best_flat['cost_unit_transistors'] / 1e6, 4)})" if best_flat else "none",
                               f"N = {min(r['int_blocks'] for r in seq)}" if seq else "none",
                               f"{fmt(fastest['throughput'] * K, 4)} ({cpg_label(cpg_variant(fastest))}, "
                               f"N = {fastest['int_blocks']})" if fastest else "–"])
     out.table("Cheapest unit that reaches the GPE's rate, per L",
               ["K", "normals", "L", f"cheapest (CPG, N) with throughput ≥ {GPE_RATE_SHARE}/K", "unit Mtr",
-               "throughput × K", "sequential CPG: smallest N", "best throughput × K (CPG, N)"], table,
+               "throughput × K", "unit depth", "cheapest no deeper than the sequential unit (Mtr)",
+               "sequential CPG: smallest N", "best throughput × K (CPG, N)"], table,
               note=f"Grid `cpg` ({workload(g, 'mesh', 'int_latency', 'te_contexts')}); costs as in the table above.")
 
     # Throughput against cost, with the Pareto front, at K = 8 and K = 4 for small L.
