@@ -19,6 +19,7 @@
 #include "model/error.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
+#include "tests/support/rejects.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "model/pattern.hpp"
 
@@ -29,22 +30,9 @@ namespace fs = std::filesystem;
 
 const fs::path kModels = "/usr/share/assimp/models";
 
+using tessim::testing::rejects;
 using tessim::testing::TempDir;
 
-// Loads `file` expecting an InputError whose message contains every one of `parts`.
-::testing::AssertionResult rejects(const fs::path& file, const std::vector<std::string>& parts) {
-  try {
-    const Mesh mesh = load_mesh(file);
-    return ::testing::AssertionFailure() << file << " loaded (" << mesh.vertex_count() << " vertices, "
-                                         << mesh.triangle_count() << " triangles) instead of being rejected";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    for (const std::string& part : parts)
-      if (message.find(part) == std::string::npos)
-        return ::testing::AssertionFailure() << "message \"" << message << "\" lacks \"" << part << "\"";
-    return ::testing::AssertionSuccess() << message;
-  }
-}
 
 bool is_unit(const glm::dvec3& n) { return std::abs(glm::length(n) - 1.0) < 1e-12; }
 

@@ -26,6 +26,7 @@
 #include "model/stpn_import.hpp"
 #include "model/tessellate.hpp"
 #include "tests/support/prism_mesh.hpp"
+#include "tests/support/rejects.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace tessim {
@@ -33,6 +34,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using tessim::testing::prism_obj;
+using tessim::testing::rejects;
 using tessim::testing::TempDir;
 
 const fs::path kModels = "/usr/share/assimp/models";
@@ -136,19 +138,6 @@ std::vector<PlyVertex> fan_vertices() {
 }
 const std::vector<std::vector<unsigned>> kFanFaces = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 6}, {0, 6, 1}};
 
-// Loads `file` expecting an InputError whose message contains every one of `parts`.
-::testing::AssertionResult rejects(const fs::path& file, const std::vector<std::string>& parts) {
-  try {
-    const Mesh mesh = load_mesh(file);
-    return ::testing::AssertionFailure() << file << " loaded instead of being rejected";
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    for (const std::string& part : parts)
-      if (message.find(part) == std::string::npos)
-        return ::testing::AssertionFailure() << "message \"" << message << "\" lacks \"" << part << "\"";
-    return ::testing::AssertionSuccess() << message;
-  }
-}
 
 void expect_same_mesh(const Mesh& a, const Mesh& b) {
   EXPECT_EQ(a.positions, b.positions);
