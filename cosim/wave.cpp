@@ -77,7 +77,8 @@ std::filesystem::path gtkw_path(const std::filesystem::path& dump) {
   return p;
 }
 
-std::string gtkw_text(const std::filesystem::path& dump, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
+// The .gtkw layout of a dump (see wave.hpp).
+static std::string gtkw_text(const std::filesystem::path& dump, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
                       std::optional<std::uint64_t> marker) {
   const int W = hw.format.coord_width();
   const int B = hw.format.bary_bits;

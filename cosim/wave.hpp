@@ -43,8 +43,4 @@ struct WaveWindow {
 void finish_wave(const std::filesystem::path& path, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
                  std::optional<std::uint64_t> marker = std::nullopt);
 
-// The .gtkw text itself (exposed for tests).
-std::string gtkw_text(const std::filesystem::path& dump, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
-                      std::optional<std::uint64_t> marker = std::nullopt);
-
 }  // namespace tessim::cosim

@@ -17,6 +17,7 @@
 #include "model/pattern.hpp"
 #include "model/pn.hpp"
 #include "model/tessellate.hpp"
+#include "tests/support/shared_edges.hpp"
 
 namespace tessim {
 namespace {
@@ -457,16 +458,6 @@ TEST(BoundingBox, CoversAllPositions) {
   EXPECT_EQ(bounding_box(Mesh{}).diagonal(), 0.0);
 }
 
-// Domain-point index of the point `step` segments from the start of edge e (0: P1->P2,
-// 1: P2->P3, 2: P3->P1).
-int edge_point(int edge, int step, int L) {
-  switch (edge) {
-    case 0: return pattern_index(step, 0, L);
-    case 1: return pattern_index(L - step, step, L);
-    default: return pattern_index(0, L - step, L);
-  }
-}
-
 TEST(Tessellate, AdjacentPatchesShareEdgePointsOnARealMesh) {
   const std::filesystem::path file = "/usr/share/assimp/models/PLY/Wuson.ply";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " not installed (assimp-testmodels)";
@@ -477,24 +468,15 @@ TEST(Tessellate, AdjacentPatchesShareEdgePointsOnARealMesh) {
 
   for (NormalMode mode : kAllModes) {
     // Every point on an edge, keyed by (lower vertex, upper vertex, steps from lower vertex).
-    std::map<std::tuple<unsigned, unsigned, int>, std::pair<glm::dvec3, glm::dvec3>> first_seen;
+    std::map<testing::EdgePointKey, std::pair<glm::dvec3, glm::dvec3>> first_seen;
     std::size_t compared = 0;
     double worst_position = 0.0, worst_normal = 0.0;
-    tessellate_mesh(mesh, L, mode, [&](const PatchView& view) {
-      const glm::uvec3 t = mesh.triangles[view.triangle];
-      for (int e = 0; e < 3; ++e) {
-        const unsigned a = t[e], b = t[(e + 1) % 3];
-        if (a == b) continue;
-        for (int step = 0; step <= L; ++step) {
-          const auto key = a < b ? std::make_tuple(a, b, step) : std::make_tuple(b, a, L - step);
-          const int idx = edge_point(e, step, L);
-          const auto [it, inserted] = first_seen.try_emplace(key, view.positions[idx], view.normals[idx]);
-          if (inserted) continue;
-          ++compared;
-          worst_position = std::max(worst_position, glm::length(view.positions[idx] - it->second.first));
-          worst_normal = std::max(worst_normal, glm::length(view.normals[idx] - it->second.second));
-        }
-      }
+    testing::for_each_edge_point(mesh, L, mode, [&](const PatchView& view, std::size_t idx, const testing::EdgePointKey& key) {
+      const auto [it, inserted] = first_seen.try_emplace(key, view.positions[idx], view.normals[idx]);
+      if (inserted) return;
+      ++compared;
+      worst_position = std::max(worst_position, glm::length(view.positions[idx] - it->second.first));
+      worst_normal = std::max(worst_normal, glm::length(view.normals[idx] - it->second.second));
     });
     EXPECT_GT(compared, mesh.triangle_count() * L);  // most edges are shared
     EXPECT_LE(worst_position, tol) << to_string(mode);

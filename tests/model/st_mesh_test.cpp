@@ -27,6 +27,7 @@
 #include "model/tessellate.hpp"
 #include "tests/support/prism_mesh.hpp"
 #include "tests/support/rejects.hpp"
+#include "tests/support/shared_edges.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace tessim {
@@ -349,16 +350,6 @@ TEST(TaggedPly, ValidateTagsNamesVerticesAndChecksSizes) {
 // ---------------------------------------------------------------------------------------------
 // Import and the closed tessellation.
 
-// Domain-point index of the point `step` segments from the start of edge e of a patch (0: P1->P2,
-// 1: P2->P3, 2: P3->P1).
-int edge_point(int edge, int step, int L) {
-  switch (edge) {
-    case 0: return pattern_index(step, 0, L);
-    case 1: return pattern_index(L - step, step, L);
-    default: return pattern_index(0, L - step, L);
-  }
-}
-
 struct EdgeComparison {
   std::size_t compared = 0;  // pairs of copies of a shared edge point
   std::size_t differing = 0;
@@ -369,23 +360,15 @@ struct EdgeComparison {
 // point on an edge shared by two patches. With L a power of two the barycentrics of edge points
 // are exact and the off-edge weight exactly 0, so equal edge control points give equal points.
 EdgeComparison compare_shared_edges(const Mesh& mesh, int L, NormalMode mode = NormalMode::Quadratic) {
-  std::map<std::tuple<unsigned, unsigned, int>, glm::dvec3> first_seen;
+  std::map<testing::EdgePointKey, glm::dvec3> first_seen;
   EdgeComparison c;
-  tessellate_mesh(mesh, L, mode, [&](const PatchView& view) {
-    const glm::uvec3 t = mesh.triangles[view.triangle];
-    for (int e = 0; e < 3; ++e) {
-      const unsigned a = t[e], b = t[(e + 1) % 3];
-      if (a == b) continue;
-      for (int step = 0; step <= L; ++step) {
-        const auto key = a < b ? std::make_tuple(a, b, step) : std::make_tuple(b, a, L - step);
-        const glm::dvec3& p = view.positions[static_cast<std::size_t>(edge_point(e, step, L))];
-        const auto [it, inserted] = first_seen.try_emplace(key, p);
-        if (inserted) continue;
-        ++c.compared;
-        if (p != it->second) ++c.differing;
-        c.worst = std::max(c.worst, glm::length(p - it->second));
-      }
-    }
+  testing::for_each_edge_point(mesh, L, mode, [&](const PatchView& view, std::size_t i, const testing::EdgePointKey& key) {
+    const glm::dvec3& p = view.positions[i];
+    const auto [it, inserted] = first_seen.try_emplace(key, p);
+    if (inserted) return;
+    ++c.compared;
+    if (p != it->second) ++c.differing;
+    c.worst = std::max(c.worst, glm::length(p - it->second));
   });
   return c;
 }
