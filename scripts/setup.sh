@@ -25,6 +25,8 @@ PACKAGES=(
   git                           # scripts/costs.py records the commit its RTL was taken from
   strace                        # scripts/check_packages.py: files the build and tests touch
   gtkwave                       # tessim cosim --wave: FST to VCD (fst2vcd), viewing the dumps with their .gtkw layout
+  chromium                      # tessim report: the HTML run report checked in a headless browser
+  pybind11-dev python3-dev      # the Python module (python/), numpy arrays out of the model and the cycle model
 )
 
 missing=()
