@@ -1,9 +1,17 @@
-// tessim render: pictures of a PN tessellation, optionally next to the flat-shaded input mesh.
+// tessim render: pictures of a PN tessellation, optionally next to the flat-shaded input mesh
+// (and, for a scalar-tagged mesh, next to plain PN), optionally coloured by a measured error
+// with a colour bar, under a caption.
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <functional>
 #include <memory>
+#include <span>
+#include <sstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
 #include "model/mesh.hpp"
@@ -12,7 +20,12 @@
 #include "model/pattern.hpp"
 #include "model/tessellate.hpp"
 #include "app/commands.hpp"
+#include "render/annotate.hpp"
 #include "render/raster.hpp"
+#include "sim/config.hpp"
+#include "sim/datapath.hpp"
+#include "sim/host.hpp"
+#include "sim/reference_check.hpp"
 
 namespace tessim::app {
 
@@ -27,6 +40,12 @@ struct RenderArgs {
   PatternOptions pattern;
   std::string normals = "quadratic";
   std::string compare;
+  std::string color = "shaded";
+  double color_max = 0.0;  // 0: the largest value drawn
+  std::string config;      // unit configuration (number format) of the error modes
+  std::string caption;
+  bool no_caption = false;
+  bool view_given = false;  // --azimuth or --elevation: else the best side is chosen
   bool wireframe = false;
   std::string size = "1024x768";
   double azimuth = ViewAngles{}.azimuth_deg;
@@ -57,10 +76,14 @@ RenderMesh flat_shaded(const Mesh& mesh) {
   return out;
 }
 
+// What a heat map colours by: one value per vertex of a patch.
+using PatchScalars = std::function<void(const PatchView&, std::span<double>)>;
+
 // The PN tessellation of every input triangle, patch boundaries flagged as primary edges so
-// that the wireframe shows the input triangles darker than the refinement inside them.
+// that the wireframe shows the input triangles darker than the refinement inside them; with
+// `scalars`, each vertex also gets its value.
 RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const TessellationCounts& counts,
-                          NormalMode mode) {
+                          NormalMode mode, const PatchScalars& scalars = {}) {
   // An edge of the pattern lies on the patch boundary when both ends are on one side of the
   // domain (u = 0, v = 0 or w = 0).
   auto on_same_side = [](const glm::dvec2& p, const glm::dvec2& q) {
@@ -73,10 +96,15 @@ RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const 
   out.normals.reserve(counts.vertices);
   out.triangles.reserve(counts.triangles);
   out.edge_flags.reserve(counts.triangles);
+  if (scalars) out.scalars.reserve(counts.vertices);
   tessellate_mesh(mesh, settings, mode, [&](const PatchView& patch) {
     const auto base = static_cast<unsigned>(out.positions.size());
     out.positions.insert(out.positions.end(), patch.positions.begin(), patch.positions.end());
     out.normals.insert(out.normals.end(), patch.normals.begin(), patch.normals.end());
+    if (scalars) {
+      out.scalars.resize(out.positions.size());
+      scalars(patch, std::span<double>(out.scalars).subspan(base, patch.positions.size()));
+    }
     for (std::size_t i = 0; i + 2 < patch.indices.size(); i += 3) {
       const glm::uvec3 t(patch.indices[i], patch.indices[i + 1], patch.indices[i + 2]);
       std::uint8_t flags = 0;
@@ -89,14 +117,117 @@ RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const 
   return out;
 }
 
+enum class ColourMode { Shaded, ErrorPosition, ErrorNormal, PnVsFlat, StpnVsPn };
+
+ColourMode parse_colour_mode(const std::string& text) {
+  if (text == "shaded") return ColourMode::Shaded;
+  if (text == "error-position") return ColourMode::ErrorPosition;
+  if (text == "error-normal") return ColourMode::ErrorNormal;
+  if (text == "pn-vs-flat") return ColourMode::PnVsFlat;
+  if (text == "stpn-vs-pn") return ColourMode::StpnVsPn;
+  throw InputError("render", "--color",
+                   "'" + text + "' is not one of shaded, error-position, error-normal, pn-vs-flat, stpn-vs-pn");
+}
+
+bool is_error_mode(ColourMode m) { return m == ColourMode::ErrorPosition || m == ColourMode::ErrorNormal; }
+
+// The panels left of the main one: "flat", "pn" or both, in the order drawn.
+struct ComparePanels {
+  bool flat = false, pn = false;
+};
+
+ComparePanels parse_compare(const std::string& text) {
+  ComparePanels c;
+  if (text.empty()) return c;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    if (item == "flat" && !c.flat) c.flat = true;
+    else if (item == "pn" && !c.pn) c.pn = true;
+    else throw InputError("render", "--compare", "'" + text + "' is not one of flat, pn, flat,pn");
+  }
+  return c;
+}
+
+// The unit's configuration for the error modes: defaults, or a configuration file (its number
+// format is what matters here).
+sim::UnitConfig unit_config(const std::string& path, NormalMode mode) {
+  sim::UnitConfig cfg;
+  if (!path.empty()) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "file", "cannot be read");
+    std::stringstream text;
+    text << in.rdbuf();
+    sim::apply_json(cfg, sim::parse_config_text(text.str(), path), path);
+  }
+  cfg.normals = mode;
+  cfg.validate(path.empty() ? "configuration" : path);
+  return cfg;
+}
+
+// The distance of each vertex to another surface at the same domain point, relative to the
+// bounding-box diagonal: the flat input triangle (pn-vs-flat), or the plain PN patch
+// (stpn-vs-pn, the tagged surface against what plain PN would make of the mesh).
+PatchScalars distance_to(const Mesh& mesh, NormalMode mode, ColourMode colour, double diagonal) {
+  return [&mesh, mode, colour, diagonal](const PatchView& patch, std::span<double> out) {
+    const glm::uvec3& tri = mesh.triangles[patch.triangle];
+    PnInput in;
+    for (int c = 0; c < 3; ++c) {
+      in.p[c] = mesh.positions[tri[c]];
+      in.n[c] = mesh.normals[tri[c]];
+    }
+    const PnPatch plain = colour == ColourMode::StpnVsPn ? make_patch(in, mode) : PnPatch{};
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double u = patch.domain[i].x, v = patch.domain[i].y;
+      // Barycentric (w, u, v) weights P1, P2, P3 (model/pn.hpp).
+      const glm::dvec3 other = colour == ColourMode::StpnVsPn ? eval_de_casteljau(plain, u, v).position
+                                                              : (1.0 - u - v) * in.p[0] + u * in.p[1] + v * in.p[2];
+      out[i] = glm::length(patch.positions[i] - other) / diagonal;
+    }
+  };
+}
+
+// The unit's fixed-point vertex at each reference vertex (same lattice point), measured against
+// the reference as `tessim sim --errors` measures it (sim::MeshErrors).
+PatchScalars fixed_point_errors(const Mesh& mesh, const sim::UnitConfig& cfg, ColourMode colour,
+                                std::shared_ptr<sim::MeshErrors> errors) {
+  const sim::HostScaling scaling = sim::host_scaling(mesh);
+  return [&mesh, cfg, colour, errors, scaling](const PatchView& patch, std::span<double> out) {
+    const sim::TriangleFx tri = sim::to_fixed(mesh, patch.triangle, scaling, cfg.format, patch.L);
+    const std::vector<sim::VertexFx> fixed = sim::evaluate_patch(tri, cfg.normals, cfg.format);
+    sim::check_patch_flags(mesh, patch.triangle, fixed.front().flags, cfg.format);
+    const int L = patch.L;
+    std::vector<int> at((L + 1) * (L + 1), -1);  // (j, k) -> index in `fixed`
+    for (std::size_t i = 0; i < fixed.size(); ++i) at[fixed[i].k * (L + 1) + fixed[i].j] = static_cast<int>(i);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const auto j = static_cast<int>(std::lround(patch.domain[i].x * L));
+      const auto k = static_cast<int>(std::lround(patch.domain[i].y * L));
+      const sim::VertexErrors e = errors->add(fixed[static_cast<std::size_t>(at[k * (L + 1) + j])]);
+      // A vanished normal has no direction: shown as the largest error a direction can have.
+      out[i] = colour == ColourMode::ErrorPosition ? e.position : e.normal_angle.value_or(std::acos(-1.0));
+    }
+  };
+}
+
+std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
 void run_render(const RenderArgs& args) {
   // Validate everything before loading or computing anything.
   const glm::ivec2 size = parse_image_size(args.size, "--size");
   const TessSettings settings = args.pattern.settings("render");
   const NormalMode mode = parse_normals_option("render", args.normals);
-  const bool compare = !args.compare.empty();
-  if (compare && args.compare != "flat")
-    throw InputError("render", "--compare", "'" + args.compare + "' is not supported (only 'flat')");
+  const ComparePanels compare = parse_compare(args.compare);
+  const ColourMode colour = parse_colour_mode(args.color);
+  if (is_error_mode(colour) && settings.kind != PatternKind::Uniform)
+    throw InputError("render", "--color",
+                     args.color + " measures the unit, which tessellates with the uniform pattern: use -L");
+  if (is_error_mode(colour) && mode == NormalMode::Derivative)
+    throw InputError("render", "--normals", "the unit has no derivative normals (float reference only)");
+  if (!(args.color_max >= 0.0) || !std::isfinite(args.color_max))
+    throw InputError("render", "--color-max", "must be a positive finite number");
+  if (!args.config.empty() && !is_error_mode(colour))
+    throw InputError("render", "--config", "only the error colour modes use the unit's configuration");
+  const sim::UnitConfig cfg = is_error_mode(colour) ? unit_config(args.config, mode) : sim::UnitConfig{};
   ViewAngles view;
   view.azimuth_deg = args.azimuth;
   view.elevation_deg = args.elevation;
@@ -114,27 +245,66 @@ void run_render(const RenderArgs& args) {
   check_output_paths({{"-o", output.string()}});
 
   const Mesh mesh = load_mesh(args.mesh);
+  const std::string mesh_name = mesh.source.empty() ? args.mesh : mesh.source;
+  const bool tagged = mesh.has_tags();
+  if (compare.pn && !tagged)
+    throw InputError(mesh_name, "tags", "--compare pn needs a scalar-tagged mesh (this one is plain PN already)");
+  if (colour == ColourMode::StpnVsPn && !tagged)
+    throw InputError(mesh_name, "tags", "--color stpn-vs-pn needs a scalar-tagged mesh");
+  Mesh plain;  // the mesh without its tags: what plain PN (and the unit) make of it
+  if (tagged && (compare.pn || is_error_mode(colour))) {
+    plain = mesh;
+    plain.tags.clear();
+  }
+  if (is_error_mode(colour)) {
+    warn_tags_ignored(mesh, "render --color error-*");
+    sim::check_convertible(mesh);
+  }
+  const Mesh& main_mesh = is_error_mode(colour) && tagged ? plain : mesh;
+
   PatternCache patterns(settings);
   const TessellationCounts counts = count_tessellation(mesh, patterns);
-  if (counts.triangles > kMaxRenderedTriangles)
+  const std::uint64_t panel_count = 1 + compare.flat + compare.pn;
+  if (counts.triangles * (1 + compare.pn) > kMaxRenderedTriangles)
     throw InputError(args.mesh, "-L", std::to_string(counts.triangles) +
                                           " tessellated triangles exceed the renderer's limit of " +
                                           std::to_string(kMaxRenderedTriangles) + "; lower the factors");
 
+  const double diagonal = bounding_box(mesh).diagonal() > 0.0 ? bounding_box(mesh).diagonal() : 1.0;
+  std::shared_ptr<sim::MeshErrors> errors;
+  PatchScalars scalars;
+  if (is_error_mode(colour)) {
+    errors = std::make_shared<sim::MeshErrors>(main_mesh, sim::host_scaling(main_mesh), cfg);
+    scalars = fixed_point_errors(main_mesh, cfg, colour, errors);
+  } else if (colour != ColourMode::Shaded) {
+    scalars = distance_to(mesh, mode, colour, diagonal);
+  }
+
+  const std::string surface = tagged && !is_error_mode(colour) ? "STPN" : "PN";
   std::vector<RenderMesh> panels;
-  if (compare) panels.push_back(flat_shaded(mesh));
-  panels.push_back(pn_tessellated(mesh, settings, counts, mode));
+  std::vector<std::string> labels;
+  if (compare.flat) {
+    panels.push_back(flat_shaded(mesh));
+    labels.push_back("flat input");
+  }
+  if (compare.pn) {
+    panels.push_back(pn_tessellated(plain, settings, counts, mode));
+    labels.push_back("PN (tags ignored)");
+  }
+  panels.push_back(pn_tessellated(main_mesh, settings, counts, mode, scalars));
+  labels.push_back(surface);
 
   // One camera for all panels, framed on everything drawn (the PN surface bulges beyond the
   // input vertices).
   std::vector<glm::dvec3> all_points;
   for (const RenderMesh& panel : panels) {
-    validate(panel, mesh.source.empty() ? args.mesh : mesh.source);
+    validate(panel, mesh_name);
     all_points.insert(all_points.end(), panel.positions.begin(), panel.positions.end());
   }
   // Adaptive factors are chosen for a camera: the picture is taken from it, so that what is near
   // (fine) and what is far (coarse) can be seen as the factors saw them.
   Camera camera;
+  bool chosen_view = false;
   if (settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive) {
     camera.eye = settings.camera.eye;
     camera.target = settings.camera.target;
@@ -143,6 +313,10 @@ void run_render(const RenderArgs& args) {
     camera.fov_y_deg = settings.camera.fov_deg;
     camera.aspect = static_cast<double>(size.x) / size.y;
   } else {
+    if (!args.view_given) {
+      view = best_view(compare.flat ? panels.front() : flat_shaded(mesh), view.up);
+      chosen_view = true;
+    }
     camera = frame_camera(all_points, view, size.x, size.y);
   }
   all_points = {};
@@ -153,25 +327,85 @@ void run_render(const RenderArgs& args) {
   options.wireframe = args.wireframe;
   options.supersample = !args.no_supersample;
 
+  // The heat map's scale: from 0 to the largest value, or to --color-max.
+  ColourScale scale;
+  const bool heat = colour != ColourMode::Shaded;
+  double largest = 0.0;
+  if (heat) {
+    for (double v : panels.back().scalars) largest = std::max(largest, v);
+    scale.hi = args.color_max > 0.0 ? args.color_max : (largest > 0.0 ? largest : 1.0);
+    scale.clipped_above = largest > scale.hi;
+    options.scalar_lo = scale.lo;
+    options.scalar_hi = scale.hi;
+    switch (colour) {
+      case ColourMode::ErrorPosition:
+        scale.title = "position error |fixed point - float64| / bounding-box diagonal";
+        break;
+      case ColourMode::ErrorNormal: scale.title = "normal error: angle fixed point to float64, radians"; break;
+      case ColourMode::PnVsFlat:
+        scale.title = "distance " + surface + " surface to flat input / bounding-box diagonal";
+        break;
+      default: scale.title = "distance STPN to plain PN / bounding-box diagonal"; break;
+    }
+  }
+
+  // Only the main panel (last) carries scalars: the others are shaded plainly.
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (const RenderMesh& panel : panels) renderers.push_back(std::make_unique<Renderer>(panel, camera, options));
-  const int total_width = compare ? 2 * size.x + kSeparatorWidth : size.x;
+  const int total_width = static_cast<int>(panel_count) * size.x + static_cast<int>(panel_count - 1) * kSeparatorWidth;
   const glm::dvec3 separator = options.background * 0.8;
+  const int text_scale = size.x >= 1400 ? 2 : 1;
 
-  ImageFileWriter writer(output, total_width, size.y);
+  // Caption: what was drawn, then one label per panel.
+  std::vector<CaptionLine> caption;
+  if (!args.no_caption) {
+    std::string header = args.caption;
+    if (header.empty()) {
+      header = file_name(mesh_name) + ": " + settings.describe() + ", " + std::string(to_string(mode)) + " normals";
+      if (is_error_mode(colour))
+        header += ", unit Q" + std::to_string(cfg.format.coord_int_bits) + "." +
+                  std::to_string(cfg.format.coord_frac_bits) + " vs float64";
+    }
+    caption.push_back({{header}, {0}, {total_width}});
+    if (panel_count > 1 || heat) {
+      CaptionLine line;
+      for (std::size_t i = 0; i < panels.size(); ++i) {
+        std::string label = labels[i];
+        if (i + 1 == panels.size() && heat) label += " (colour: " + args.color + ")";
+        line.cells.push_back(label);
+        line.x.push_back(static_cast<int>(i) * (size.x + kSeparatorWidth));
+        line.width.push_back(size.x);
+      }
+      caption.push_back(line);
+    }
+  }
+  const Image caption_image = caption.empty() ? Image() : caption_strip(caption, total_width, options.background, text_scale);
+  const Image bar_image = heat ? colour_bar_strip(scale, total_width, options.background, text_scale) : Image();
+
+  ImageFileWriter writer(output, total_width, caption_image.height + size.y + bar_image.height);
+  if (caption_image.height > 0) writer.write_rows(caption_image);
   constexpr int kRowsPerWrite = 64;
   for (int y = 0; y < size.y; y += kRowsPerWrite) {
     const int y_end = std::min(size.y, y + kRowsPerWrite);
     Image band = renderers.front()->render_rows(y, y_end);
-    if (compare) band = side_by_side(band, renderers.back()->render_rows(y, y_end), separator);
+    for (std::size_t i = 1; i < renderers.size(); ++i)
+      band = side_by_side(band, renderers[i]->render_rows(y, y_end), separator);
     writer.write_rows(band);
   }
+  if (bar_image.height > 0) writer.write_rows(bar_image);
   writer.finish();
 
-  std::printf("wrote %s: %dx%d, %zu input triangles, %zu PN triangles (%s, %s normals)%s\n",
-              output.string().c_str(), total_width, size.y, mesh.triangles.size(),
-              panels.back().triangles.size(), settings.describe().c_str(), std::string(to_string(mode)).c_str(),
-              compare ? ", left: flat-shaded input" : "");
+  std::printf("wrote %s: %dx%d, %zu input triangles, %zu %s triangles (%s, %s normals)",
+              output.string().c_str(), total_width, caption_image.height + size.y + bar_image.height,
+              mesh.triangles.size(), panels.back().triangles.size(), surface.c_str(), settings.describe().c_str(),
+              std::string(to_string(mode)).c_str());
+  for (std::size_t i = 0; i + 1 < labels.size(); ++i) std::printf("%s%s", i == 0 ? ", left: " : " | ", labels[i].c_str());
+  std::printf("\n");
+  if (chosen_view)
+    std::printf("view     azimuth %.0f, elevation %.0f degrees: the side showing most detail\n",
+                view.azimuth_deg, view.elevation_deg);
+  if (heat)
+    std::printf("colour   %s: 0 .. %.3g (largest value %.9g)\n", args.color.c_str(), scale.hi, largest);
 }
 
 }  // namespace
@@ -184,21 +418,41 @@ void register_render(CLI::App& app) {
   cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
       ->capture_default_str();
   cmd->add_option("--compare", args->compare,
-                  "'flat': the flat-shaded input mesh on the left, the PN tessellation on the right");
+                  "Panels left of the tessellation: 'flat' (the flat-shaded input), 'pn' (plain PN, for a "
+                  "scalar-tagged mesh), or 'flat,pn'");
+  cmd->add_option("--color", args->color,
+                  "Surface colour: shaded; or a heat map with colour bar: error-position, error-normal (the "
+                  "unit's fixed point against the float64 reference), pn-vs-flat (distance to the flat input), "
+                  "stpn-vs-pn (tagged mesh: distance to plain PN)")
+      ->capture_default_str();
+  cmd->add_option("--color-max", args->color_max,
+                  "Top of the colour bar (0: the largest value); fixes the scale across pictures")
+      ->transform(number_check<double>("render", "--color-max", "positive finite numbers"))
+      ->capture_default_str();
+  cmd->add_option("--config", args->config,
+                  "Unit configuration file (number format) for the error colour modes (default: defaults)");
+  cmd->add_option("--caption", args->caption, "Caption text (default: mesh, pattern, normals and panel labels)");
+  cmd->add_flag("--no-caption", args->no_caption, "No caption above the picture");
   cmd->add_flag("--wireframe", args->wireframe,
                 "Overlay triangle edges (input triangles dark, their refinement light)");
   cmd->add_option("--size", args->size, "Image size WxH per panel (1..8192 each)")->capture_default_str();
-  cmd->add_option("--azimuth", args->azimuth, "View angle around the up axis, degrees from the front")
-      ->transform(number_check<double>("render", "--azimuth", "the finite numbers"))
-      ->capture_default_str();
-  cmd->add_option("--elevation", args->elevation, "View angle above the horizon, degrees (-90..90)")
-      ->transform(number_check<double>("render", "--elevation", "-90..90"))
-      ->capture_default_str();
+  CLI::Option* azimuth =
+      cmd->add_option("--azimuth", args->azimuth,
+                      "View angle around the up axis, degrees from the front (default: of 8 azimuths 45 degrees "
+                      "apart, the one showing most detail: small input triangles face-on)")
+          ->transform(number_check<double>("render", "--azimuth", "the finite numbers"))
+          ->capture_default_str();
+  CLI::Option* elevation = cmd->add_option("--elevation", args->elevation, "View angle above the horizon, degrees (-90..90)")
+                               ->transform(number_check<double>("render", "--elevation", "-90..90"))
+                               ->capture_default_str();
   cmd->add_option("--up", args->up, "Up axis of the model: y or z (front is +Z or -Y)")->capture_default_str();
   cmd->add_flag("--no-supersample", args->no_supersample, "One sample per pixel instead of 2x2");
   cmd->add_option("-o,--output", args->output, "Output image: .png (8-bit sRGB) or .exr (half-float linear)")
       ->required();
-  cmd->callback([args] { run_render(*args); });
+  cmd->callback([args, azimuth, elevation] {
+    args->view_given = azimuth->count() > 0 || elevation->count() > 0;
+    run_render(*args);
+  });
 }
 
 }  // namespace tessim::app

@@ -9,6 +9,7 @@
 
 #include "model/error.hpp"
 #include "model/output_file.hpp"
+#include "render/annotate.hpp"
 #include "render/imageio/imageio_loader.hpp"
 
 namespace tessim::app {
@@ -39,6 +40,8 @@ void validate(const RenderMesh& mesh, std::string_view what) {
     throw InputError(name, "normals", "count differs from the number of positions");
   if (!mesh.edge_flags.empty() && mesh.edge_flags.size() != mesh.triangles.size())
     throw InputError(name, "edge flags", "count differs from the number of triangles");
+  if (!mesh.scalars.empty() && mesh.scalars.size() != mesh.positions.size())
+    throw InputError(name, "scalars", "count differs from the number of positions");
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     if (!finite(mesh.positions[i])) throw InputError(name, "vertex " + std::to_string(i), "position is not finite");
     if (!finite(mesh.normals[i])) throw InputError(name, "vertex " + std::to_string(i), "normal is not finite");
@@ -282,7 +285,14 @@ struct Renderer::Impl {
     const double specular = diffuse > 0.0 ? std::pow(std::max(0.0, glm::dot(normal, half)), options.shininess) : 0.0;
     // Sky-ground ambient: a little more light on surfaces facing up in the image, as a depth cue.
     const double ambient = options.ambient * (0.8 + 0.2 * glm::dot(normal, up));
-    glm::dvec3 colour = options.albedo * (ambient + options.diffuse * diffuse) + glm::dvec3(options.specular * specular);
+    glm::dvec3 colour;
+    if (mesh.scalars.empty()) {
+      colour = options.albedo * (ambient + options.diffuse * diffuse) + glm::dvec3(options.specular * specular);
+    } else {
+      const double value = w[0] * mesh.scalars[tri.x] + w[1] * mesh.scalars[tri.y] + w[2] * mesh.scalars[tri.z];
+      const double span = options.scalar_hi - options.scalar_lo;
+      colour = colormap(span > 0.0 ? (value - options.scalar_lo) / span : 0.0) * (0.45 + 0.55 * diffuse + ambient);
+    }
 
     if (options.wireframe) {
       // Distance (in samples) from the sample to the edge opposite corner k is
@@ -307,6 +317,31 @@ struct Renderer::Impl {
       colour = glm::mix(colour, options.wire_colour, alpha);
     }
     return colour;
+  }
+
+  double visible_detail() const {
+    // Each sample counts its triangle's density relative to the mean triangle (mean area over its
+    // area), capped so that slivers and degenerate triangles cannot dominate.
+    double mean_area = 0.0;
+    std::vector<double> area(mesh.triangles.size());
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const glm::uvec3& tri = mesh.triangles[t];
+      area[t] = 0.5 * glm::length(glm::cross(mesh.positions[tri.y] - mesh.positions[tri.x],
+                                             mesh.positions[tri.z] - mesh.positions[tri.x]));
+      mean_area += area[t] / static_cast<double>(mesh.triangles.size());
+    }
+    constexpr double kCap = 100.0;
+    std::vector<Sample> samples;
+    double detail = 0.0;
+    for (int band = 0; band < sample_height; band += kBandRows) {
+      rasterize(band, std::min(sample_height, band + kBandRows), samples);
+      for (const Sample& s : samples)
+        if (s.triangle >= 0) {
+          const double a = area[static_cast<std::size_t>(s.triangle)];
+          detail += a * kCap > mean_area ? mean_area / a : kCap;
+        }
+    }
+    return detail;
   }
 
   Image render_rows(int y_begin, int y_end) const {
@@ -339,7 +374,30 @@ Renderer::Renderer(const RenderMesh& mesh, const Camera& camera, const RenderOpt
 Renderer::~Renderer() = default;
 Image Renderer::render_rows(int y_begin, int y_end) const { return impl_->render_rows(y_begin, y_end); }
 int Renderer::width() const { return impl_->options.width; }
+double Renderer::visible_detail() const { return impl_->visible_detail(); }
 int Renderer::height() const { return impl_->options.height; }
+
+ViewAngles best_view(const RenderMesh& mesh, UpAxis up) {
+  // Small and unsupersampled: only which triangles win a sample matters.
+  RenderOptions probe;
+  probe.width = 160;
+  probe.height = 120;
+  probe.supersample = false;
+  ViewAngles best;
+  best.up = up;
+  double best_detail = 0.0;
+  for (int step = 0; step < 8; ++step) {
+    ViewAngles view = best;
+    view.azimuth_deg = ViewAngles{}.azimuth_deg + 45.0 * step;
+    const Camera camera = frame_camera(mesh.positions, view, probe.width, probe.height);
+    const double detail = Renderer(mesh, camera, probe).visible_detail();
+    if (detail > best_detail) {  // ties keep the earlier (the conventional front first)
+      best_detail = detail;
+      best.azimuth_deg = view.azimuth_deg;
+    }
+  }
+  return best;
+}
 
 Image render(const RenderMesh& mesh, const Camera& camera, const RenderOptions& options) {
   return Renderer(mesh, camera, options).render();

@@ -20,12 +20,16 @@ namespace tessim::app {
 // inconsistent. edge_flags is optional (empty: every edge is a primary edge); bit e of
 // edge_flags[t] marks the edge from corner e to corner (e+1)%3 of triangle t as primary
 // (drawn darker in the wireframe, e.g. the boundary of a tessellated patch); unmarked edges
-// are secondary (drawn lighter, e.g. edges inside a patch).
+// are secondary (drawn lighter, e.g. edges inside a patch). scalars is optional (empty: the
+// albedo colour everywhere); with one value per position the surface is coloured by the value,
+// interpolated per pixel and mapped through RenderOptions::scalar_lo..scalar_hi to viridis
+// (a heat map, e.g. of errors).
 struct RenderMesh {
   std::vector<glm::dvec3> positions;
   std::vector<glm::dvec3> normals;
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint8_t> edge_flags;
+  std::vector<double> scalars;
 };
 
 // Checks that every index is in range and the arrays agree in size; throws InputError.
@@ -69,6 +73,9 @@ struct RenderOptions {
   double diffuse = 0.82;
   double specular = 0.25;
   double shininess = 40.0;
+  // Heat maps (RenderMesh::scalars): the value range mapped to the colour map's ends. The
+  // lighting is softened (less contrast, no highlight) so that the colour stays readable.
+  double scalar_lo = 0.0, scalar_hi = 1.0;
 };
 
 // Throws InputError unless 1 <= width, height <= kMaxImageSide.
@@ -102,11 +109,21 @@ class Renderer {
   Image render() const { return render_rows(0, height()); }
   int width() const;
   int height() const;
+  // How much of the mesh's detail the view shows (for choosing a view): over the visible
+  // samples, the sum of their triangle's density, mean triangle area / its area (capped at 100).
+  double visible_detail() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The model's best side: of eight azimuths 45 degrees apart (starting at the default) at the
+// default elevation, the one that shows most detail (Renderer::visible_detail: small triangles
+// seen face-on weigh most). Where a model has its detail (a face, a front panel), it has its
+// small triangles, so this finds the side a person would show without knowing which way the
+// model faces.
+ViewAngles best_view(const RenderMesh& mesh, UpAxis up);
 
 // Renders the whole image in one call.
 Image render(const RenderMesh& mesh, const Camera& camera, const RenderOptions& options);

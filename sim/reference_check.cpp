@@ -131,7 +131,7 @@ MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitC
   if (!(diagonal_ > 0)) diagonal_ = 1.0;  // a single point: absolute errors
 }
 
-void MeshErrors::add(const VertexFx& v) {
+VertexErrors MeshErrors::add(const VertexFx& v) {
   if (patch_id_ != v.id) {
     const glm::uvec3& tri = mesh_.triangles[v.id];
     PnInput in;
@@ -146,11 +146,15 @@ void MeshErrors::add(const VertexFx& v) {
   const double segments = static_cast<double>(v.L);
   const PnVertex ref = eval_de_casteljau(patch_, v.j / segments, v.k / segments);
   const glm::dvec3 pos = position_from_fixed(v.pos, scaling_, cfg_.format);
-  acc_.add_position(glm::length(pos - ref.position) / diagonal_);
+  VertexErrors e;
+  e.position = glm::length(pos - ref.position) / diagonal_;
+  acc_.add_position(e.position);
   const glm::dvec3 nrm = normal_from_fixed(v.nrm, cfg_.format);
   if (glm::length(nrm) > 0) {  // a vanished normal has no direction to compare
-    acc_.add_normal_angle(std::atan2(glm::length(glm::cross(nrm, ref.normal)), glm::dot(nrm, ref.normal)));
+    e.normal_angle = std::atan2(glm::length(glm::cross(nrm, ref.normal)), glm::dot(nrm, ref.normal));
+    acc_.add_normal_angle(*e.normal_angle);
   }
+  return e;
 }
 
 nlohmann::json to_json(const ErrorStats& e) {

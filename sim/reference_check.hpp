@@ -87,10 +87,19 @@ class ArithmeticCheck {
   std::string worst_;
 };
 
+// One output vertex against the reference: position error relative to the bounding-box
+// diagonal, normal angle in radians (none when the output normal vanished).
+struct VertexErrors {
+  double position = 0;
+  std::optional<double> normal_angle;
+};
+
 class MeshErrors {
  public:
   MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg);
-  void add(const VertexFx& v);
+  // Measures the vertex, adds it to the statistics and returns its own errors (the heat maps
+  // of `tessim render --color error-position|error-normal`).
+  VertexErrors add(const VertexFx& v);
   ErrorStats result() const { return acc_.result(); }
 
  private:

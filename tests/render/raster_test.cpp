@@ -17,10 +17,13 @@
 
 #include "model/error.hpp"
 #include "render/raster.hpp"
+#include "tests/support/read_image.hpp"
 
 namespace fs = std::filesystem;
 using tessim::InputError;
 using namespace tessim::app;
+using tessim::testing::read_back;
+using tessim::testing::ReadBack;
 
 namespace {
 
@@ -418,20 +421,6 @@ int run_tessim(const std::string& arguments, const fs::path& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-struct ReadBack {
-  int width = 0, height = 0;
-  std::vector<float> rgb;
-};
-ReadBack read_back(const fs::path& path) {
-  ReadBack r;
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) return r;
-  r.width = in->spec().width;
-  r.height = in->spec().height;
-  r.rgb.resize(static_cast<std::size_t>(r.width) * r.height * 3);
-  if (in->spec().nchannels != 3 || !in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, r.rgb.data())) r = {};
-  return r;
-}
 
 }  // namespace
 
@@ -463,7 +452,10 @@ TEST(RenderCommand, CompareWritesFlatAndPnPanels) {
   write_obj(icosphere(1), mesh);
   const fs::path log = dir.path() / "log.txt";
   const fs::path png = dir.path() / "cmp.png";
-  ASSERT_EQ(run_tessim("render " + mesh.string() + " -L 3 --compare flat --wireframe --size 96x64 -o " + png.string(), log), 0);
+  ASSERT_EQ(run_tessim("render " + mesh.string() + " -L 3 --compare flat --wireframe --size 96x64 --no-caption -o " +
+                           png.string(),
+                       log),
+            0);
   const ReadBack both = read_back(png);
   ASSERT_EQ(both.width, 2 * 96 + kSeparatorWidth);
   ASSERT_EQ(both.height, 64);
@@ -484,7 +476,9 @@ TEST(RenderCommand, CompareWritesFlatAndPnPanels) {
   EXPECT_GT(differing, left_covered / 4);
 
   const fs::path exr = dir.path() / "single.exr";
-  ASSERT_EQ(run_tessim("render " + mesh.string() + " --normals derivative --size 50x40 -o " + exr.string(), log), 0);
+  ASSERT_EQ(run_tessim("render " + mesh.string() + " --normals derivative --size 50x40 --no-caption -o " + exr.string(),
+                       log),
+            0);
   const ReadBack single = read_back(exr);
   EXPECT_EQ(single.width, 50);
   EXPECT_EQ(single.height, 40);
