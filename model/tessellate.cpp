@@ -1,8 +1,13 @@
 #include "model/tessellate.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "model/error.hpp"
@@ -107,13 +112,167 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, int L, NormalMode mode, co
   return tessellate_mesh(mesh, settings, mode, sink);
 }
 
+namespace {
+
+// The patch of input triangle t: control points (scalar-tagged where the mesh has tags), then
+// every domain point evaluated by de Casteljau into positions/normals. Counts into `summary`.
+void evaluate_patch(const Mesh& mesh, std::size_t t, const DomainPattern& domain, NormalMode mode,
+                    glm::dvec3* positions, glm::dvec3* normals, TessellationSummary& summary) {
+  const glm::uvec3& tri = mesh.triangles[t];
+  PnInput input;
+  std::array<VertexTags, 3> tags{};
+  for (int c = 0; c < 3; ++c) {
+    input.p[c] = mesh.positions[tri[c]];
+    input.n[c] = mesh.normals[tri[c]];
+    if (mesh.has_tags()) tags[c] = mesh.tags[tri[c]];
+  }
+  // A tagged mesh takes the scalar-tagged control points (plain PN where tags are neutral).
+  const PnPatch patch = mesh.has_tags() ? make_stpn_patch(input, tags, mode) : make_patch(input, mode);
+  summary.degenerate_edges += static_cast<std::uint64_t>(patch.degenerate_edges);
+  if (is_zero_area(input.p[0], input.p[1], input.p[2])) ++summary.degenerate_triangles;
+  for (std::size_t i = 0; i < domain.points.size(); ++i) {
+    const PnVertex vertex = eval_de_casteljau(patch, domain.points[i].x, domain.points[i].y, &summary.int_ops);
+    positions[i] = vertex.position;
+    normals[i] = vertex.normal;
+  }
+  ++summary.patches;
+  summary.vertices += domain.points.size();
+  summary.triangles += domain.triangle_count();
+}
+
+void add(TessellationSummary& into, const TessellationSummary& s) {
+  into.patches += s.patches;
+  into.culled += s.culled;
+  into.vertices += s.vertices;
+  into.triangles += s.triangles;
+  into.int_ops += s.int_ops;
+  into.degenerate_edges += s.degenerate_edges;
+  into.degenerate_triangles += s.degenerate_triangles;
+}
+
+// The uniform pattern on several threads: workers evaluate batches of consecutive patches into
+// a ring of buffers, the calling thread hands them to the sink in input order. The patches are
+// independent, so the sink sees exactly what the sequential loop gives it, in the same order;
+// memory stays a few batches whatever the mesh.
+TessellationSummary tessellate_uniform_parallel(const Mesh& mesh, const DomainPattern& domain, NormalMode mode,
+                                                const PatchSink& sink, unsigned workers) {
+  const std::size_t patch_vertices = domain.points.size();
+  // About 64 Ki vertices per batch: large enough that handing batches over costs nothing.
+  const std::size_t batch_patches = std::max<std::size_t>(1, (std::size_t{1} << 16) / patch_vertices);
+  const std::size_t triangles = mesh.triangles.size();
+  const std::size_t batches = (triangles + batch_patches - 1) / batch_patches;
+
+  struct Slot {
+    std::size_t batch = ~std::size_t{0};  // the batch it holds, once ready
+    bool ready = false;
+    std::vector<glm::dvec3> positions, normals;
+    TessellationSummary summary;
+  };
+  std::vector<Slot> ring(2 * workers + 2);
+  std::mutex mutex;
+  std::condition_variable slot_ready, slot_free;
+  std::size_t next_batch = 0;  // the next batch a worker takes
+  std::size_t consumed = 0;    // batches the sink has seen
+  bool stop = false;
+  std::exception_ptr failure;
+
+  auto work = [&] {
+    for (;;) {
+      std::size_t batch;
+      {
+        std::unique_lock lock(mutex);
+        if (stop || next_batch >= batches) return;
+        batch = next_batch++;
+        // Its slot is free once the batch ring.size() before it has reached the sink.
+        slot_free.wait(lock, [&] { return stop || batch < consumed + ring.size(); });
+        if (stop) return;
+      }
+      Slot& slot = ring[batch % ring.size()];
+      try {
+        const std::size_t first = batch * batch_patches, end = std::min(triangles, first + batch_patches);
+        slot.positions.resize((end - first) * patch_vertices);
+        slot.normals.resize((end - first) * patch_vertices);
+        slot.summary = {};
+        for (std::size_t t = first; t < end; ++t)
+          evaluate_patch(mesh, t, domain, mode, &slot.positions[(t - first) * patch_vertices],
+                         &slot.normals[(t - first) * patch_vertices], slot.summary);
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+        stop = true;
+        slot_ready.notify_all();
+        slot_free.notify_all();
+        return;
+      }
+      std::lock_guard lock(mutex);
+      slot.batch = batch;
+      slot.ready = true;
+      slot_ready.notify_all();
+    }
+  };
+
+  std::vector<std::thread> threads;
+  for (unsigned i = 0; i < workers; ++i) threads.emplace_back(work);
+  auto finish = [&] {
+    {
+      std::lock_guard lock(mutex);
+      stop = true;
+    }
+    slot_ready.notify_all();
+    slot_free.notify_all();
+    for (std::thread& t : threads) t.join();
+  };
+
+  TessellationSummary summary;
+  try {
+    for (std::size_t batch = 0; batch < batches; ++batch) {
+      Slot& slot = ring[batch % ring.size()];
+      {
+        std::unique_lock lock(mutex);
+        slot_ready.wait(lock, [&] { return failure || (slot.ready && slot.batch == batch); });
+        if (failure) std::rethrow_exception(failure);
+      }
+      const std::size_t first = batch * batch_patches, end = std::min(triangles, first + batch_patches);
+      for (std::size_t t = first; t < end; ++t) {
+        PatchView view;
+        view.triangle = static_cast<std::uint32_t>(t);
+        view.L = domain.uniform_L;
+        view.positions = std::span<const glm::dvec3>(&slot.positions[(t - first) * patch_vertices], patch_vertices);
+        view.normals = std::span<const glm::dvec3>(&slot.normals[(t - first) * patch_vertices], patch_vertices);
+        view.domain = domain.points;
+        view.indices = domain.indices;
+        sink(view);
+      }
+      add(summary, slot.summary);
+      std::lock_guard lock(mutex);
+      slot.ready = false;
+      ++consumed;
+      slot_free.notify_all();
+    }
+  } catch (...) {
+    finish();
+    throw;
+  }
+  finish();
+  return summary;
+}
+
+}  // namespace
+
 TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settings, NormalMode mode,
                                     const PatchSink& sink) {
   validate(mesh, settings);
   PatternCache patterns(settings);
+
+  // The uniform pattern is one pattern for every patch: worth spreading over the cores when the
+  // mesh has more than a batch or two of work.
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  if (settings.kind == PatternKind::Uniform && cores > 1 && !mesh.triangles.empty() &&
+      mesh.triangles.size() * patterns.pattern(mesh, 0).points.size() > (std::size_t{1} << 17))
+    return tessellate_uniform_parallel(mesh, patterns.pattern(mesh, 0), mode, sink, cores);
+
   // The two buffers every patch is written into: memory stays one patch, whatever the mesh.
   std::vector<glm::dvec3> positions, normals;
-
   TessellationSummary summary;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const DomainPattern& domain = patterns.pattern(mesh, t);
@@ -121,26 +280,9 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settin
       ++summary.culled;
       continue;
     }
-    const glm::uvec3& tri = mesh.triangles[t];
-    PnInput input;
-    std::array<VertexTags, 3> tags{};
-    for (int c = 0; c < 3; ++c) {
-      input.p[c] = mesh.positions[tri[c]];
-      input.n[c] = mesh.normals[tri[c]];
-      if (mesh.has_tags()) tags[c] = mesh.tags[tri[c]];
-    }
-    // A tagged mesh takes the scalar-tagged control points (plain PN where tags are neutral).
-    const PnPatch patch = mesh.has_tags() ? make_stpn_patch(input, tags, mode) : make_patch(input, mode);
-    summary.degenerate_edges += static_cast<std::uint64_t>(patch.degenerate_edges);
-    if (is_zero_area(input.p[0], input.p[1], input.p[2])) ++summary.degenerate_triangles;
-
     positions.resize(domain.points.size());
     normals.resize(domain.points.size());
-    for (std::size_t i = 0; i < domain.points.size(); ++i) {
-      const PnVertex vertex = eval_de_casteljau(patch, domain.points[i].x, domain.points[i].y, &summary.int_ops);
-      positions[i] = vertex.position;
-      normals[i] = vertex.normal;
-    }
+    evaluate_patch(mesh, t, domain, mode, positions.data(), normals.data(), summary);
 
     PatchView view;
     view.triangle = static_cast<std::uint32_t>(t);
@@ -150,10 +292,6 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settin
     view.domain = domain.points;
     view.indices = domain.indices;
     sink(view);
-
-    ++summary.patches;
-    summary.vertices += domain.points.size();
-    summary.triangles += domain.triangle_count();
   }
   return summary;
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -429,6 +430,45 @@ TEST(Tessellate, StreamsPatchesInOrderThroughFixedBuffers) {
       EXPECT_EQ(s.degenerate_triangles, 0u);
     }
   }
+}
+
+// Large uniform jobs are evaluated on several threads (tessellate.cpp): the sink must still see
+// every patch in input order, each bit-identical to a direct de Casteljau evaluation, with the
+// same summary; and a sink that fails stops the workers and reaches the caller.
+TEST(Tessellate, ParallelEvaluationKeepsOrderValuesAndSummary) {
+  const Mesh mesh = load_mesh("/usr/share/assimp/models/PLY/Wuson.ply");
+  const int L = 8;  // 3732 patches x 45 vertices: several batches
+  const auto points = pattern_points(L);
+  std::uint32_t expected = 0;
+  std::uint64_t mismatches = 0, int_ops = 0;
+  const TessellationSummary s = tessellate_mesh(mesh, L, NormalMode::Quadratic, [&](const PatchView& view) {
+    ASSERT_EQ(view.triangle, expected++);
+    const glm::uvec3 t = mesh.triangles[view.triangle];
+    PnInput in;
+    for (int c = 0; c < 3; ++c) {
+      in.p[c] = mesh.positions[t[c]];
+      in.n[c] = mesh.normals[t[c]];
+    }
+    const PnPatch patch = make_patch(in, NormalMode::Quadratic);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const PnVertex x = eval_de_casteljau(patch, points[i].j / double(L), points[i].k / double(L), &int_ops);
+      mismatches += view.positions[i] != x.position || view.normals[i] != x.normal;
+    }
+  });
+  EXPECT_EQ(expected, mesh.triangles.size());
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_EQ(s.patches, mesh.triangles.size());
+  EXPECT_EQ(s.vertices, mesh.triangles.size() * points.size());
+  EXPECT_EQ(s.int_ops, int_ops);
+
+  std::uint32_t seen = 0;
+  EXPECT_THROW(tessellate_mesh(mesh, L, NormalMode::Quadratic,
+                               [&](const PatchView& view) {
+                                 if (view.triangle == 2500) throw std::runtime_error("disk full");
+                                 ++seen;
+                               }),
+               std::runtime_error);
+  EXPECT_EQ(seen, 2500u);
 }
 
 TEST(Tessellate, CountsDegenerateEdgesAndTriangles) {
