@@ -188,12 +188,13 @@ PatchScalars distance_to(const Mesh& mesh, NormalMode mode, ColourMode colour, d
 }
 
 // The unit's fixed-point vertex at each reference vertex (same lattice point), measured against
-// the reference as `tessim sim --errors` measures it (sim::MeshErrors).
+// the reference as `tessim sim --errors` measures it (sim::MeshErrors). A tagged mesh takes the
+// fixed-point scalar-tagged arithmetic against the scalar-tagged reference.
 PatchScalars fixed_point_errors(const Mesh& mesh, const sim::UnitConfig& cfg, ColourMode colour,
                                 std::shared_ptr<sim::MeshErrors> errors) {
   const sim::HostScaling scaling = sim::host_scaling(mesh);
   return [&mesh, cfg, colour, errors, scaling](const PatchView& patch, std::span<double> out) {
-    const sim::TriangleFx tri = sim::to_fixed(mesh, patch.triangle, scaling, cfg.format, patch.L);
+    const sim::TriangleFx tri = sim::to_fixed(mesh, patch.triangle, scaling, cfg.format, patch.L, true);
     const std::vector<sim::VertexFx> fixed = sim::evaluate_patch(tri, cfg.normals, cfg.format);
     sim::check_patch_flags(mesh, patch.triangle, fixed.front().flags, cfg.format);
     const int L = patch.L;
@@ -251,16 +252,13 @@ void run_render(const RenderArgs& args) {
     throw InputError(mesh_name, "tags", "--compare pn needs a scalar-tagged mesh (this one is plain PN already)");
   if (colour == ColourMode::StpnVsPn && !tagged)
     throw InputError(mesh_name, "tags", "--color stpn-vs-pn needs a scalar-tagged mesh");
-  Mesh plain;  // the mesh without its tags: what plain PN (and the unit) make of it
-  if (tagged && (compare.pn || is_error_mode(colour))) {
+  Mesh plain;  // the mesh without its tags: what plain PN makes of it
+  if (tagged && compare.pn) {
     plain = mesh;
     plain.tags.clear();
   }
-  if (is_error_mode(colour)) {
-    warn_tags_ignored(mesh, "render --color error-*");
-    sim::check_convertible(mesh);
-  }
-  const Mesh& main_mesh = is_error_mode(colour) && tagged ? plain : mesh;
+  if (is_error_mode(colour)) sim::check_convertible(mesh);
+  const Mesh& main_mesh = mesh;
 
   PatternCache patterns(settings);
   const TessellationCounts counts = count_tessellation(mesh, patterns);
@@ -274,13 +272,13 @@ void run_render(const RenderArgs& args) {
   std::shared_ptr<sim::MeshErrors> errors;
   PatchScalars scalars;
   if (is_error_mode(colour)) {
-    errors = std::make_shared<sim::MeshErrors>(main_mesh, sim::host_scaling(main_mesh), cfg);
+    errors = std::make_shared<sim::MeshErrors>(main_mesh, sim::host_scaling(main_mesh), cfg, true);
     scalars = fixed_point_errors(main_mesh, cfg, colour, errors);
   } else if (colour != ColourMode::Shaded) {
     scalars = distance_to(mesh, mode, colour, diagonal);
   }
 
-  const std::string surface = tagged && !is_error_mode(colour) ? "STPN" : "PN";
+  const std::string surface = tagged ? "STPN" : "PN";
   std::vector<RenderMesh> panels;
   std::vector<std::string> labels;
   if (compare.flat) {

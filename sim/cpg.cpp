@@ -39,6 +39,45 @@ FxVec tangent_point(const FxVec& pn, const FxVec& pf, const FxVec& nn, i128 w_ex
   return r;
 }
 
+// normalize(v) as the CPG computes it: v / floor(sqrt(v.v)), each component a truncated
+// division (F fraction bits). A zero vector raises kFlagDivByZero and gives zero.
+FxVec normalize_fx(const FxVec& v, const NumberFormat& f, std::uint8_t& flags) {
+  const int F = f.coord_frac_bits;
+  const i128 norm = static_cast<i128>(isqrt(static_cast<u128>(dot_exact(v, v))));  // F fraction bits
+  FxVec r{};
+  for (int c = 0; c < 3; ++c) r[c] = div_trunc(i128{v[c]} << F, norm, f, flags);
+  return r;
+}
+
+// round(a + k b) per component, k a scalar with F fraction bits: a + k b is exact with 2F
+// fraction bits and rounded once.
+FxVec add_scaled(const FxVec& a, std::int64_t k, const FxVec& b, const NumberFormat& f, std::uint8_t& flags) {
+  const int F = f.coord_frac_bits;
+  FxVec r{};
+  for (int c = 0; c < 3; ++c) r[c] = saturate(round_shift((i128{a[c]} << F) + i128{k} * b[c], F), f, flags);
+  return r;
+}
+
+// Scalar-tagged tangent coefficient nearest Pj on edge j -> k (docs/mathematics.md §9):
+//   d = Pj + (1 - θj)/3 (Pk - Pj),  b = d + Π(Pj, n, d) m,  Π(p, n, q) = -n.(q - p)
+// with (n, m) = (Xj, Xj) off a crease and (Nj, Yj) on one (both ends tagged). d is rounded
+// once; Π is exact (2F fraction bits) and b rounds d + Π m once.
+FxVec stpn_tangent(const FxVec& pj, const FxVec& pk, std::int64_t theta, const FxVec& n, const FxVec& m,
+                   const NumberFormat& f, std::uint8_t& flags) {
+  const int F = f.coord_frac_bits;
+  const i128 one = i128{1} << F;
+  FxVec d{}, dj{};
+  for (int c = 0; c < 3; ++c) {
+    const i128 step = (one - theta) * (i128{pk[c]} - pj[c]);  // 2F fraction bits, exact
+    d[c] = saturate(i128{pj[c]} + mul_const(step, 2 * F, one_third(f), f, flags), f, flags);
+    dj[c] = d[c] - pj[c];
+  }
+  const i128 project = -dot_exact(n, dj);  // 2F fraction bits
+  FxVec b{};
+  for (int c = 0; c < 3; ++c) b[c] = saturate(i128{d[c]} + round_shift(project * m[c], 2 * F), f, flags);
+  return b;
+}
+
 }  // namespace
 
 bool hardware_supports(NormalMode mode) { return mode != NormalMode::Derivative; }
@@ -52,11 +91,40 @@ ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, c
   cp.b[net_index(0, 0, 3)] = tri.p[0];
   cp.b[net_index(3, 0, 3)] = tri.p[1];
   cp.b[net_index(0, 3, 3)] = tri.p[2];
+
+  // Scalar tags: the sharp normal N'_i = normalize(Ni + s σi Δi) of each tagged corner, on the
+  // side s of its crease this triangle's face normal lies on (exact sign), replaces Ni in the
+  // normal field; X_i and Y_i steer the tangents of non-neutral corners.
+  std::array<FxVec, 3> field = tri.n;
+  std::array<FxVec, 3> x_dir{}, y_dir{};
+  const bool stpn = !(tri.tags[0].neutral() && tri.tags[1].neutral() && tri.tags[2].neutral());
+  if (stpn) {
+    const FxVec e1 = sub(tri.p[1], tri.p[0]), e2 = sub(tri.p[2], tri.p[0]);
+    const std::array<i128, 3> face{i128{e1[1]} * e2[2] - i128{e1[2]} * e2[1], i128{e1[2]} * e2[0] - i128{e1[0]} * e2[2],
+                                   i128{e1[0]} * e2[1] - i128{e1[1]} * e2[0]};  // exact, 2F fraction bits
+    for (int v = 0; v < 3; ++v) {
+      const TagsFx& t = tri.tags[v];
+      if (t.neutral()) continue;
+      if (t.tagged()) {
+        const i128 side = face[0] * t.delta[0] + face[1] * t.delta[1] + face[2] * t.delta[2];
+        const std::int64_t signed_sigma = side >= 0 ? t.sigma : -t.sigma;
+        field[v] = normalize_fx(add_scaled(tri.n[v], signed_sigma, t.delta, f, flags), f, flags);
+        y_dir[v] = normalize_fx(add_scaled(tri.n[v], t.beta, t.delta, f, flags), f, flags);
+      }
+      // X = normalize((1 - σ) N + σ N'), rounded once before the normalization.
+      FxVec blend{};
+      const i128 one = i128{1} << F;
+      for (int c = 0; c < 3; ++c)
+        blend[c] = saturate(round_shift((one - t.sigma) * tri.n[v][c] + i128{t.sigma} * field[v][c], F), f, flags);
+      x_dir[v] = normalize_fx(blend, f, flags);
+    }
+  }
+
   const std::array<int, 3> corner_n{net_index(0, 0, 2), net_index(2, 0, 2), net_index(0, 2, 2)};
   for (int v = 0; v < 3; ++v) {
     for (int c = 0; c < 3; ++c) {
-      cp.n[corner_n[v]][c] = mode == NormalMode::Linear ? tri.n[v][c]
-                                                         : saturate(i128{2} * tri.n[v][c], f, flags);
+      cp.n[corner_n[v]][c] = mode == NormalMode::Linear ? field[v][c]
+                                                         : saturate(i128{2} * field[v][c], f, flags);
     }
   }
 
@@ -67,16 +135,25 @@ ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, c
     const FxVec& na = tri.n[e.a];
     const FxVec& nb = tri.n[e.b];
     const FxVec d = sub(pb, pa);  // exact, W+1 bits
-    const FxVec s = add(na, nb);  // exact, W+1 bits
     const i128 wa_ex = dot_exact(d, na);
     const i128 wb_ex = dot_exact(d, nb);
-    cp.b[e.near_a] = tangent_point(pa, pb, na, wa_ex, +1, f, flags);
-    cp.b[e.near_b] = tangent_point(pb, pa, nb, wb_ex, -1, f, flags);
+    // A corner's tangent: plain PN when its tags are neutral, else the scalar-tagged rule (its
+    // crease rule when both ends are tagged).
+    auto tangent = [&](int near, int far, const FxVec& pn, const FxVec& pf, const FxVec& nn, i128 w_ex, int sign) {
+      const TagsFx& t = tri.tags[near];
+      if (t.neutral()) return tangent_point(pn, pf, nn, w_ex, sign, f, flags);
+      if (t.tagged() && tri.tags[far].tagged()) return stpn_tangent(pn, pf, t.theta, nn, y_dir[near], f, flags);
+      return stpn_tangent(pn, pf, t.theta, x_dir[near], x_dir[near], f, flags);
+    };
+    cp.b[e.near_a] = tangent(e.a, e.b, pa, pb, na, wa_ex, +1);
+    cp.b[e.near_b] = tangent(e.b, e.a, pb, pa, nb, wb_ex, -1);
     for (int c = 0; c < 3; ++c) sum_t[c] += i128{cp.b[e.near_a][c]} + cp.b[e.near_b][c];
 
     if (mode == NormalMode::Linear) continue;
-    // Mid-edge normal: m = s - k proj_d(s), proj_d(s)_c = d_c (d.s) / (d.d), per component so
-    // that every quotient is bounded by |s| whatever the edge length.
+    // Mid-edge normal from the field's corner normals (the sharp ones of tagged corners):
+    // m = s - k proj_d(s), proj_d(s)_c = d_c (d.s) / (d.d), per component so that every
+    // quotient is bounded by |s| whatever the edge length.
+    const FxVec s = add(field[e.a], field[e.b]);  // exact, W+1 bits
     const i128 p_ex = dot_exact(d, s);
     const i128 q_ex = dot_exact(d, d);
     const int k = mode == NormalMode::Quadratic ? 2 : 4;

@@ -11,12 +11,25 @@
 
 namespace tessim::sim {
 
+// The scalar tags of one vertex (docs/stpn.md) in the coordinate format: crease vector Δ
+// (zero: untagged), sharpness σ, tension θ, bias β. All zero: a plain PN vertex.
+struct TagsFx {
+  FxVec delta{};
+  std::int64_t sigma = 0, theta = 0, beta = 0;
+  bool tagged() const { return delta[0] != 0 || delta[1] != 0 || delta[2] != 0; }
+  bool neutral() const { return !tagged() && theta == 0; }  // changes nothing (model: VertexTags)
+  bool operator==(const TagsFx&) const = default;
+};
+
 // One input triangle as it crosses the unit's input stream.
 struct TriangleFx {
   std::array<FxVec, 3> p{};  // P1, P2, P3
   std::array<FxVec, 3> n{};  // N1, N2, N3 (unit length before quantisation)
   int L = 1;                 // tessification factor 1..64
   std::uint32_t id = 0;      // patch id, passed through to every output vertex
+  // Scalar tags per corner; all neutral for plain PN. Only the fixed-point scalar-tagged
+  // arithmetic reads them (compute_control_points); the unit's input stream carries no tags yet.
+  std::array<TagsFx, 3> tags{};
 };
 
 // Contents of one control-point buffer (net layout of model/pn.hpp, net_index()).
@@ -34,7 +47,10 @@ struct ControlPointsFx {
 // (six multipliers behind the TE) whose precision falls as 1/L^2; it stays in the reference.
 bool hardware_supports(NormalMode mode);
 
-// Values of the dedicated CPG for one triangle.
+// Values of the dedicated CPG for one triangle. A triangle with non-neutral tags takes the
+// scalar-tagged control points in fixed point (docs/number-formats.md, Scalar-tagged PN), the
+// formulas of model/pn.hpp make_stpn_patch operation for operation; neutral corners take the
+// plain PN formulas, so all-neutral tags give the plain control points bit for bit.
 ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, const NumberFormat& fmt);
 
 // The shape of the dedicated CPG's datapath (docs/microarchitecture.md §5): only its timing

@@ -54,12 +54,24 @@ glm::dvec3 dequantize(const FxVec& x, const NumberFormat& fmt) {
 }
 
 TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
-                    const NumberFormat& fmt, int L) {
+                    const NumberFormat& fmt, int L, bool with_tags) {
   const glm::uvec3& t = mesh.triangles[index];
   TriangleFx tri;
   for (int v = 0; v < 3; ++v) {
     tri.p[static_cast<std::size_t>(v)] = quantize(scaling.to_unit(mesh.positions[t[v]]), fmt);
     tri.n[static_cast<std::size_t>(v)] = quantize(mesh.normals[t[v]], fmt);
+    if (!with_tags || !mesh.has_tags()) continue;
+    const VertexTags& tags = mesh.tags[t[v]];
+    // Δ (|components| <= 2), θ and β (in [-1, 1]) always fit; σ >= 0 is unbounded in the format.
+    if (!(tags.sigma < std::ldexp(1.0, fmt.coord_int_bits)))
+      throw InputError(mesh.source.empty() ? std::string("mesh") : mesh.source, "vertex " + std::to_string(t[v]),
+                       "sigma " + std::to_string(tags.sigma) + " is beyond the unit's coordinate range (below " +
+                           std::to_string(1 << fmt.coord_int_bits) + ")");
+    TagsFx& q = tri.tags[static_cast<std::size_t>(v)];
+    q.delta = quantize(tags.delta, fmt);
+    q.sigma = quantize(tags.sigma, fmt);
+    q.theta = quantize(tags.theta, fmt);
+    q.beta = quantize(tags.beta, fmt);
   }
   tri.L = L;
   tri.id = static_cast<std::uint32_t>(index);

@@ -39,8 +39,11 @@ FxVec quantize(const glm::dvec3& x, const NumberFormat& fmt);
 glm::dvec3 dequantize(const FxVec& x, const NumberFormat& fmt);
 
 // Input triangle `index` of the mesh, scaled and quantized, with factor L and id = index.
+// With `with_tags` the mesh's scalar tags come along (Δ, σ, θ, β quantized like normals;
+// the fixed-point scalar-tagged arithmetic, docs/number-formats.md); InputError naming the
+// vertex when σ exceeds the coordinate range.
 TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
-                    const NumberFormat& fmt, int L);
+                    const NumberFormat& fmt, int L, bool with_tags = false);
 
 // Output vertex data back in the mesh's coordinates. The normal is normalized; a vanished
 // normal (all components zero) is returned as the zero vector and reported by the caller.

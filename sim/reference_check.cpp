@@ -126,8 +126,9 @@ bool ArithmeticCheck::check(const VertexFx& v) {
 
 ArithmeticErrors ArithmeticCheck::result() const { return {acc_.result(), beyond_, saturated_, worst_}; }
 
-MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg)
-    : mesh_(mesh), scaling_(scaling), cfg_(cfg), diagonal_(bounding_box(mesh).diagonal()) {
+MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged)
+    : mesh_(mesh), scaling_(scaling), cfg_(cfg), scalar_tagged_(scalar_tagged && mesh.has_tags()),
+      diagonal_(bounding_box(mesh).diagonal()) {
   if (!(diagonal_ > 0)) diagonal_ = 1.0;  // a single point: absolute errors
 }
 
@@ -135,11 +136,13 @@ VertexErrors MeshErrors::add(const VertexFx& v) {
   if (patch_id_ != v.id) {
     const glm::uvec3& tri = mesh_.triangles[v.id];
     PnInput in;
+    std::array<VertexTags, 3> tags{};
     for (int c = 0; c < 3; ++c) {
       in.p[c] = mesh_.positions[tri[c]];
       in.n[c] = mesh_.normals[tri[c]];
+      if (scalar_tagged_) tags[c] = mesh_.tags[tri[c]];
     }
-    patch_ = make_patch(in, cfg_.normals);
+    patch_ = scalar_tagged_ ? make_stpn_patch(in, tags, cfg_.normals) : make_patch(in, cfg_.normals);
     patch_id_ = v.id;
   }
   // The reference at the exact domain point, as `tessim tessellate` evaluates it.

@@ -96,7 +96,9 @@ struct VertexErrors {
 
 class MeshErrors {
  public:
-  MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg);
+  // `scalar_tagged`: the reference of a tagged mesh is its scalar-tagged surface (the output
+  // came from the fixed-point scalar-tagged arithmetic); otherwise plain PN whatever the tags.
+  MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged = false);
   // Measures the vertex, adds it to the statistics and returns its own errors (the heat maps
   // of `tessim render --color error-position|error-normal`).
   VertexErrors add(const VertexFx& v);
@@ -106,6 +108,7 @@ class MeshErrors {
   const Mesh& mesh_;
   HostScaling scaling_;
   UnitConfig cfg_;
+  bool scalar_tagged_ = false;
   double diagonal_ = 1.0;
   std::optional<std::uint32_t> patch_id_;
   PnPatch patch_;
