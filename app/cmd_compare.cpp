@@ -100,7 +100,9 @@ void run(const CompareArgs& args) {
   };
   std::vector<Row> config, stats;
   for (const std::string& k : keys) {
-    if (k.rfind("units.", 0) == 0 || k.rfind("tool.", 0) == 0) continue;
+    // The timeline's buckets are a time series, not figures of the run (and two runs' buckets
+    // differ in width): left out.
+    if (k.rfind("units.", 0) == 0 || k.rfind("tool.", 0) == 0 || k.rfind("timeline.", 0) == 0) continue;
     const json* x = fa.contains(k) ? &fa.at(k) : nullptr;
     const json* y = fb.contains(k) ? &fb.at(k) : nullptr;
     Row r{k, x ? text(*x) : "-", y ? text(*y) : "-", "", ""};

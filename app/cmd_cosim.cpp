@@ -69,6 +69,10 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
                        "no RTL build '" + a.variant + "'; the RTL builds are " + known_builds());
     return a.variant;
   }
+  if (cfg.cpg_tags)
+    throw InputError(flags.config_file().empty() || flags.overrides().contains("cpg_tags") ? "command line"
+                                                                                          : flags.config_file(),
+                     "cpg_tags", "the RTL's CPG computes plain PN: no RTL build takes scalar tags yet (cycle model only)");
   if (const std::optional<std::string> v = rtl::find_rtl_variant(cfg.hardware(), a.verif)) return *v;
   const std::string source = flags.config_file().empty() || flags.overrides().contains("int_blocks")
                                  ? "command line"

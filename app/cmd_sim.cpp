@@ -62,7 +62,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   const std::optional<TessSettings> adaptive = adaptive_workload(a.adaptive, "sim");
 
   const Mesh mesh = load_mesh(a.mesh);
-  warn_tags_ignored(mesh, "sim");
+  if (!cfg.cpg_tags) warn_tags_ignored(mesh, "sim");
   const std::vector<std::uint8_t> factors = adaptive ? uniform_factors_covering(*adaptive, mesh) : std::vector<std::uint8_t>{};
   std::uint64_t out_vertices = 0, out_triangles = 0;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {

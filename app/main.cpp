@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   tessim::app::register_pattern(app);
   tessim::app::register_stpn_import(app);
   tessim::app::register_compare(app);
+  tessim::app::register_report(app);
 #ifdef TESSIM_HAVE_COSIM
   tessim::app::register_cosim(app);
   tessim::app::register_rtlbench(app);

@@ -34,7 +34,8 @@ void warn_tags_ignored(const Mesh& mesh, const char* command) {
   if (acting == 0) return;
   std::fprintf(stderr,
                "tessim: warning: %s: tags: %td vertices carry scalar tags, which tessim %s ignores: the unit "
-               "computes plain PN triangles (tessellate and render use the tags, docs/stpn.md)\n",
+               "computes plain PN triangles (tessellate and render use the tags, and sim with --cpg-tags 1; "
+               "docs/stpn.md)\n",
                mesh.source.c_str(), acting, command);
 }
 

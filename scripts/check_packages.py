@@ -55,6 +55,8 @@ OPTIONAL_FILES = [
     (r"^/usr/lib/python3/dist-packages/[^/]+\.(?:dist|egg)-info/entry_points\.txt$",
      "importlib.metadata reads every installed distribution's entry points (Dask looks up its plugins)"),
     (r"^/usr/lib/debug/", "symbolizers read separate debug information when it is installed"),
+    (r"^/usr/share/fonts/", "fontconfig offers every installed font; Chromium opens faces that happen to be there "
+                            "(DejaVu Sans Oblique of fonts-dejavu-extra at start-up) and draws without them"),
 ]
 OPTIONAL = re.compile("|".join(f"(?:{p})" for p, _ in OPTIONAL_FILES))
 

@@ -81,4 +81,8 @@ start=$SECONDS
 "$python" scripts/costs.py "$work/results.csv" --in-place --tessim "$tessim" --cache "$cost_cache" "${cost_filter[@]}" "${cost_mode[@]}"
 cp "$work/results.csv" "$out/results.csv"
 "$python" scripts/plots.py "$out/results.csv" --out "$out" --tessim "$tessim"
+if [[ $set_name == small ]]; then
+  # Scalar tags against plain PN (load-balancing.md §12): meshes of their own, made by stpn-import.
+  "$python" scripts/stpn_study.py --tessim "$tessim" --out "$out" --jobs "$jobs" > "$out/stpn_table.md"
+fi
 echo "results.sh: $set_name set done in $((SECONDS - start)) s: $out" >&2

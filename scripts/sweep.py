@@ -82,8 +82,9 @@ DEFAULT_TESSIM = REPO / "build" / "bin" / "tessim"
 ADAPTIVE_KEYS = ("camera", "viewport", "pixels_per_segment")
 SWEEP_KEYS = ("mesh", "errors") + ADAPTIVE_KEYS
 # Statistics that are not columns: the config is already the parameter columns, the mesh path
-# is the `mesh` parameter.
-STATS_SKIP = ("config", "mesh", "units")  # units: docs/statistics.md, `tessim schema`
+# is the `mesh` parameter, the units are in docs/statistics.md and `tessim schema`, and the
+# timeline is a time series of up to 256 buckets, not a figure of the point.
+STATS_SKIP = ("config", "mesh", "units", "timeline")
 
 
 class SpecError(Exception):

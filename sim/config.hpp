@@ -33,6 +33,9 @@ struct HardwareConfig {
   int vtx_fifo_depth = 2;    // output vertex FIFO between the TE and the geometry engine
   CpgMapping cpg_mapping = CpgMapping::Dedicated;
   CpgVariant cpg;            // datapath shape of the dedicated CPG (lanes, digit bits)
+  // The CPG takes scalar tags (docs/stpn.md): the input stream carries them and tagged
+  // triangles get scalar-tagged control points, for extra CPG cycles (cpg_tag_cycles).
+  int cpg_tags = 0;  // 0 or 1 (an int so that the parameter table's range check sees the value given)
   bool operator==(const HardwareConfig&) const = default;
 };
 

@@ -1,5 +1,6 @@
 #include "sim/cpg.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "model/pn.hpp"
@@ -197,6 +198,29 @@ int cpg_edge_cycles(NormalMode mode, const NumberFormat& f, int digit_bits) {
     case NormalMode::Derivative: break;
   }
   throw std::invalid_argument("normal mode not implemented by the unit");
+}
+
+int cpg_tag_cycles(const TriangleFx& tri, const NumberFormat& f, const CpgVariant& v) {
+  const int D = cpg_digit_steps(f, v.digit_bits);
+  const int normalization = 2 + 2 * D;  // scale and add, dot product, square root, division
+  constexpr int kFaceNormal = 2, kSide = 1, kTangent = 2;
+  int corners = 0, slowest_corner = 0, any_tagged = 0;
+  for (const TagsFx& t : tri.tags) {
+    if (t.neutral()) continue;
+    const int c = t.tagged() ? kSide + 3 * normalization : normalization;
+    corners += c;
+    slowest_corner = std::max(slowest_corner, c);
+    any_tagged |= t.tagged();
+  }
+  if (corners == 0) return 0;
+  int tangents = 0, slowest_edge = 0;
+  for (int e = 0; e < 3; ++e) {
+    const int ends = !tri.tags[e].neutral() + !tri.tags[(e + 1) % 3].neutral();
+    tangents += kTangent * ends;
+    slowest_edge = std::max(slowest_edge, kTangent * ends);
+  }
+  const bool in_turn = v.lanes == 1;
+  return (any_tagged ? kFaceNormal : 0) + (in_turn ? corners + tangents : slowest_corner + slowest_edge);
 }
 
 int cpg_cycles(NormalMode mode, const NumberFormat& f, const CpgVariant& v) {

@@ -69,6 +69,11 @@ int cpg_digit_steps(const NumberFormat& fmt, int digit_bits);
 // centre point and the write.
 int cpg_edge_cycles(NormalMode mode, const NumberFormat& fmt, int digit_bits = 1);
 int cpg_cycles(NormalMode mode, const NumberFormat& fmt, const CpgVariant& variant = {});
+// Cycles a CPG that takes scalar tags adds for this triangle (0 when its tags are neutral;
+// docs/microarchitecture.md §5): the face normal, per non-neutral corner its normalizations
+// (N', Y and X for a tagged corner, X alone for a θ-only one), and two cycles per tagged
+// tangent. One lane takes the corners and edges in turn, three lanes one each at a time.
+int cpg_tag_cycles(const TriangleFx& tri, const NumberFormat& fmt, const CpgVariant& variant = {});
 
 // Mode encoding on the unit's mode input and in the RTL package.
 constexpr int mode_code(NormalMode m) {

@@ -80,7 +80,7 @@ ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& s
   const double diagonal = mesh.positions.empty() ? 1.0 : std::max(glm::length(hi - lo), 1e-12);
   return ArithmeticCheck(
       [&mesh, scaling, cfg, factors](std::uint32_t id) {
-        return to_fixed(mesh, id, scaling, cfg.format, factors.empty() ? cfg.tess_factor : factors[id]);
+        return to_fixed(mesh, id, scaling, cfg.format, factors.empty() ? cfg.tess_factor : factors[id], cfg.cpg_tags);
       },
       diagonal, cfg);
 }
@@ -93,7 +93,17 @@ bool ArithmeticCheck::check(const VertexFx& v) {
   }
   if (patch_id_ != v.id) {
     const TriangleFx tri = triangle_(v.id);
-    patch_ = make_patch(dequantized_input(tri, cfg_.format), cfg_.normals);
+    patch_tagged_ = !(tri.tags[0].neutral() && tri.tags[1].neutral() && tri.tags[2].neutral());
+    if (patch_tagged_) {
+      std::array<VertexTags, 3> tags;
+      for (int c = 0; c < 3; ++c)
+        tags[c] = {dequantize(tri.tags[c].delta, cfg_.format), std::ldexp(double(tri.tags[c].sigma), -cfg_.format.coord_frac_bits),
+                   std::ldexp(double(tri.tags[c].theta), -cfg_.format.coord_frac_bits),
+                   std::ldexp(double(tri.tags[c].beta), -cfg_.format.coord_frac_bits)};
+      patch_ = make_stpn_patch(dequantized_input(tri, cfg_.format), tags, cfg_.normals);
+    } else {
+      patch_ = make_patch(dequantized_input(tri, cfg_.format), cfg_.normals);
+    }
     normal_bound_ = normal_error_bound(tri, cfg_.normals, cfg_.format);
     patch_id_ = v.id;
   }
@@ -103,6 +113,13 @@ bool ArithmeticCheck::check(const VertexFx& v) {
   const glm::dvec3 nrm = dequantize(v.nrm, cfg_.format);
   const double pos_err = glm::length(pos - ref.position);
   acc_.add_position(pos_err / diagonal_);
+  if (patch_tagged_) {  // measured against the scalar-tagged reference; no derived bound yet
+    ++scalar_tagged_;
+    const double len = glm::length(nrm);
+    if (len > 0 && glm::length(ref.normal) > 0)
+      acc_.add_normal_angle(std::acos(std::clamp(glm::dot(nrm / len, glm::normalize(ref.normal)), -1.0, 1.0)));
+    return true;
+  }
   bool beyond = pos_err > budget_.position_units + 1e-12;
   std::string why =
       beyond ? "position error " + std::to_string(pos_err) + " > bound " + std::to_string(budget_.position_units) : "";
@@ -124,7 +141,10 @@ bool ArithmeticCheck::check(const VertexFx& v) {
   return !beyond;
 }
 
-ArithmeticErrors ArithmeticCheck::result() const { return {acc_.result(), beyond_, saturated_, worst_}; }
+ArithmeticErrors ArithmeticCheck::result() const {
+  ArithmeticErrors e{acc_.result(), beyond_, saturated_, scalar_tagged_, worst_};
+  return e;
+}
 
 MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged)
     : mesh_(mesh), scaling_(scaling), cfg_(cfg), scalar_tagged_(scalar_tagged && mesh.has_tags()),
@@ -173,6 +193,7 @@ nlohmann::json to_json(const ArithmeticErrors& e) {
   nlohmann::json j = to_json(e.stats);
   j["beyond_bound"] = e.beyond_bound;
   j["saturated_vertices"] = e.saturated;
+  j["scalar_tagged_vertices"] = e.scalar_tagged;
   if (!e.worst.empty()) j["worst"] = e.worst;
   return j;
 }

@@ -52,6 +52,7 @@ struct ArithmeticErrors {
   ErrorStats stats;
   std::uint64_t beyond_bound = 0;  // vertices outside the derived bound
   std::uint64_t saturated = 0;     // vertices of saturated patches: the bound does not apply
+  std::uint64_t scalar_tagged = 0; // vertices of tagged patches: measured, no bound derived yet
   std::string worst;               // the first vertex beyond the bound, and why
 };
 
@@ -70,6 +71,7 @@ class ArithmeticCheck {
   static double diagonal_of(const std::vector<TriangleFx>& stream, const NumberFormat& fmt);
   // The check of a whole mesh streamed with sim::MeshSource (each patch re-quantized on demand).
   // `factors`: per triangle, or empty for cfg.tess_factor everywhere (as simulate() takes them).
+  // With cfg.cpg_tags the mesh's tags go along, as the unit receives them.
   static ArithmeticCheck for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg,
                                   std::span<const std::uint8_t> factors = {});
 
@@ -84,6 +86,8 @@ class ArithmeticCheck {
   ErrorAccumulator acc_;
   std::uint64_t beyond_ = 0;
   std::uint64_t saturated_ = 0;
+  std::uint64_t scalar_tagged_ = 0;
+  bool patch_tagged_ = false;
   std::string worst_;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -38,6 +39,22 @@ std::string percent(std::uint64_t part, std::uint64_t whole) {
   return buf;
 }
 
+// The run's counts from cycle 0 in the timeline's terms.
+Timeline::Bucket run_totals(const Unit& unit, const Gpe& gpe) {
+  Timeline::Bucket t;
+  t.te = unit.te_class_cycles();
+  const UnitStats& s = unit.stats();
+  for (const IntBlockStats& b : s.int_blocks) t.int_busy += b.busy;
+  t.cpg_busy = s.cpg.busy;
+  t.vertices = s.vertices_out;
+  const GpeStats& g = gpe.stats();
+  t.gpe[static_cast<std::size_t>(GpeClass::Busy)] = g.busy;
+  t.gpe[static_cast<std::size_t>(GpeClass::Stalled)] = g.stalled;
+  t.gpe[static_cast<std::size_t>(GpeClass::Cpg)] = g.cpg;
+  t.gpe[static_cast<std::size_t>(GpeClass::Starved)] = g.starved;
+  return t;
+}
+
 WorkloadFactors workload_factors(const MeshSource& source, std::uint64_t triangles) {
   WorkloadFactors w;
   for (std::uint64_t t = 0; t < triangles; ++t) {
@@ -65,7 +82,7 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   r.scaling = host_scaling(mesh);
 
   Unit unit(cfg);
-  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, factors);
+  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, factors, cfg.cpg_tags);
   BasicTestbench<MeshSource> tb(source, cfg);
   r.cpg_cycles = unit.cpg_cycles();
   r.factors = workload_factors(source, r.triangles);
@@ -73,7 +90,11 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   int L = r.triangles ? source.factor(0) : cfg.tess_factor;  // of the patch expected next
   int patch_vertices = pattern_vertex_count(L);
   const std::uint64_t total = source.vertices();
-  const std::uint64_t watchdog = watchdog_cycles(cfg, unit.cpg_cycles());
+  // A tagged triangle keeps the CPG longer: the watchdog allows for three tagged corners.
+  TriangleFx all_tagged;
+  for (TagsFx& t : all_tagged.tags) t.delta[0] = 1;
+  const int tag_margin = cfg.cpg_tags ? cpg_tag_cycles(all_tagged, cfg.format, cfg.cpg) : 0;
+  const std::uint64_t watchdog = watchdog_cycles(cfg, unit.cpg_cycles() + tag_margin);
 
   std::vector<glm::dvec3> patch_pos, patch_nrm;
   if (hooks.on_patch) {
@@ -85,7 +106,7 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   std::optional<MeshErrors> mesh_errors;
   std::optional<ArithmeticCheck> arithmetic;
   if (hooks.measure_errors) {
-    mesh_errors.emplace(mesh, r.scaling, cfg);
+    mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags);
     arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, factors));
   }
 
@@ -100,6 +121,8 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
   // counts at its end minus these.
   std::array<std::uint64_t, kTeClasses.size()> interval_start{};
   bool interval_late = false;  // the GPE waited in this interval
+  // The timeline reads the counters only at its bucket boundaries: one comparison per cycle.
+  std::uint64_t timeline_end = r.timeline.next_boundary();
 
   const bool fast_forward = hooks.fast_forward && observers.empty();
   while (accepted < total) {
@@ -113,6 +136,12 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
           interval_late = true;
         }
         cycle += n;
+        if (cycle >= timeline_end) {  // the stretch crossed bucket boundaries: its cycles are all alike
+          const CycleActivity& a = unit.activity();
+          r.timeline.close_within(run_totals(unit, tb.gpe()), cycle,
+                                  Timeline::quiet_cycle(a.te, a.cpg, tb.gpe_cycle().cls));
+          timeline_end = r.timeline.next_boundary();
+        }
         if (cycle - last_progress > watchdog)
           throw std::logic_error("cycle model: no vertex accepted for " + std::to_string(watchdog) +
                                  " cycles (cycle " + std::to_string(cycle) + ")");
@@ -177,14 +206,20 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
       std::erase_if(observers, [&](CycleObserver* o) { return !o->on_cycle(unit, g); });
     }
     ++cycle;
+    if (cycle == timeline_end) {
+      r.timeline.close(run_totals(unit, tb.gpe()));
+      timeline_end = r.timeline.next_boundary();
+    }
     if (cycle - last_progress > watchdog)
       throw std::logic_error("cycle model: no vertex accepted for " + std::to_string(watchdog) +
                              " cycles (cycle " + std::to_string(cycle) + ")");
   }
 
+  r.timeline.finish(run_totals(unit, tb.gpe()), cycle);
   r.unit = unit.stats();
   r.gpe = tb.gpe().stats();
   if (mesh_errors) r.errors = SimErrors{mesh_errors->result(), arithmetic->result()};
+  r.cpg_tag_cycles = unit.cpg_tag_cycles();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -278,8 +313,10 @@ nlohmann::json workload_json(const WorkloadFactors& w, std::uint64_t triangles) 
 }
 
 nlohmann::json analytic_of(const SimResult& r) {
-  if (r.factors.uniform) return analytic_json(predict(r.config, r.cpg_cycles), r.config, r.triangles);
-  const AnalyticPrediction p = predict(r.config, r.cpg_cycles, ratio(r.factors.vertices, r.triangles));
+  // Scalar tags make C vary per triangle: the prediction takes the mean, rounded.
+  const int cpg_c = r.cpg_cycles + static_cast<int>(std::lround(ratio(r.cpg_tag_cycles, r.triangles)));
+  if (r.factors.uniform) return analytic_json(predict(r.config, cpg_c), r.config, r.triangles);
+  const AnalyticPrediction p = predict(r.config, cpg_c, ratio(r.factors.vertices, r.triangles));
   nlohmann::json j = analytic_json(p, r.config, r.triangles);
   const VaryingWorkloadBounds b = varying_bounds(p, r.factors.patches_with_factor);
   const auto v = static_cast<double>(r.factors.vertices);
@@ -303,6 +340,7 @@ nlohmann::json stats_units() {
       {"vertices_out", "vertices"},
       {"cycles", kCycles},
       {"cpg_cycles_per_triangle", "cycles/triangle"},
+      {"cpg_tag_cycles", kCycles},
       {"throughput", "vertices/cycle"},
       {"cycles_per_vertex", "cycles/vertex"},
       {"int.blocks[].busy", kCycles},
@@ -354,8 +392,19 @@ nlohmann::json stats_units() {
     u[prefix + "normal_angle_max"] = "radians";
     u[prefix + "normal_angle_rms"] = "radians";
   }
+  // The timeline: per bucket, the same counts as above over that bucket's cycles.
+  u["timeline.buckets"] = "buckets";
+  u["timeline.bucket_cycles"] = "cycles (width of every bucket but the last)";
+  u["timeline.cycles[]"] = kCycles;
+  for (const char* c : {"context_limited", "int_limited", "busy", "blocked_by_gpe", "starved_by_cpg", "idle", "pipeline"})
+    u[std::string("timeline.te.") + c + "[]"] = kCycles;
+  for (const char* c : {"busy", "stalled", "cpg", "starved"}) u[std::string("timeline.gpe.") + c + "[]"] = kCycles;
+  u["timeline.int_busy[]"] = "cycles summed over the INT blocks (= operations issued)";
+  u["timeline.cpg_busy[]"] = kCycles;
+  u["timeline.vertices_out[]"] = "vertices";
   u["errors.arithmetic.beyond_bound"] = "vertices";
   u["errors.arithmetic.saturated_vertices"] = "vertices";
+  u["errors.arithmetic.scalar_tagged_vertices"] = "vertices";
   return u;
 }
 
@@ -375,6 +424,7 @@ nlohmann::json stats_json(const SimResult& r) {
       {"triangles", r.triangles},
       {"config", to_json(r.config)},
       {"cpg_cycles_per_triangle", r.cpg_cycles},
+      {"cpg_tag_cycles", r.cpg_tag_cycles},
       {"cycles", u.cycles},
       {"triangles_in", u.triangles_in},
       {"vertices_out", u.vertices_out},
@@ -404,6 +454,7 @@ nlohmann::json stats_json(const SimResult& r) {
       {"workload", workload_json(r.factors, r.triangles)},
       {"analytic", analytic_of(r)},
       {"wall_seconds", r.wall_seconds},
+      {"timeline", to_json(r.timeline)},
   };
   if (r.errors) {
     j["errors"] = to_json(r.errors->mesh);
@@ -421,11 +472,15 @@ std::string summary(const SimResult& r) {
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 "unit     N=%d INT (latency %d), V=%d contexts, FIFOs tri %d / vtx %d, Q%d.%d (W=%d) B=%d, "
-                "CPG %s: %d cycles/triangle\n",
+                "CPG %s: %d cycles/triangle",
                 c.int_blocks, c.int_latency, c.te_contexts, c.tri_fifo_depth, c.vtx_fifo_depth,
                 c.format.coord_int_bits, c.format.coord_frac_bits, c.format.coord_width(), c.format.bary_bits,
                 to_string(c.cpg_mapping).c_str(), r.cpg_cycles);
   s << buf;
+  if (c.cpg_tags)
+    s << " + scalar tags (" << r.cpg_tag_cycles << " cycles over the run, "
+      << ratio(r.cpg_tag_cycles, r.triangles) << " per triangle)";
+  s << "\n";
   std::string factors;
   if (r.factors.uniform) {
     const int L = r.triangles ? static_cast<int>(std::find_if(r.factors.patches_with_factor.begin() + 1,

@@ -20,6 +20,7 @@
 #include "sim/host.hpp"
 #include "sim/reference_check.hpp"
 #include "sim/testbench.hpp"
+#include "sim/timeline.hpp"
 #include "sim/unit.hpp"
 
 namespace tessim::sim {
@@ -69,6 +70,7 @@ struct SimResult {
   UnitConfig config;
   std::uint64_t triangles = 0;   // input triangles of the mesh
   int cpg_cycles = 0;            // C of the configuration (doc §5)
+  std::uint64_t cpg_tag_cycles = 0;  // CPG cycles scalar tags added over the run (cpg_tags)
   UnitStats unit;
   GpeStats gpe;
   // The cycles after the GPE's first vertex in which it waited for the next one (ready, VTX
@@ -83,6 +85,7 @@ struct SimResult {
   HostScaling scaling;
   std::optional<SimErrors> errors;       // with SimHooks::measure_errors
   WorkloadFactors factors;               // the factors of the run's patches
+  Timeline timeline;                     // the classes over time, in buckets of cycles
 };
 
 // Runs every triangle of `mesh` through the unit with a uniform factor cfg.tess_factor until
@@ -108,7 +111,7 @@ nlohmann::json stats_json(const SimResult& r);
 // The statistics JSON's format: its version (raised when a key changes meaning or goes away),
 // and the unit of every number in it by path, array elements as "[]" ("int.blocks[].busy").
 // stats_json() carries both, and `tessim schema` lists the units (docs/statistics.md).
-inline constexpr int kStatsSchemaVersion = 2;
+inline constexpr int kStatsSchemaVersion = 3;
 nlohmann::json stats_units();
 std::string summary(const SimResult& r);       // one screen for a hardware architect
 

@@ -45,20 +45,22 @@ class VectorSource {
 class MeshSource {
  public:
   // `factors`: one per triangle (empty: L for every triangle); kept by reference.
+  // `with_tags`: the mesh's scalar tags go along (a CPG that takes them, cpg_tags).
   MeshSource(const Mesh& mesh, const HostScaling& scaling, const NumberFormat& format, int L,
-             std::span<const std::uint8_t> factors = {})
-      : mesh_(mesh), scaling_(scaling), format_(format), L_(L), factors_(factors) {
+             std::span<const std::uint8_t> factors = {}, bool with_tags = false)
+      : mesh_(mesh), scaling_(scaling), format_(format), L_(L), factors_(factors), with_tags_(with_tags) {
     rewind();
   }
   int factor(std::size_t t) const { return factors_.empty() ? L_ : factors_[t]; }
   void rewind() {
     next_ = 0;
-    if (available()) current_ = to_fixed(mesh_, 0, scaling_, format_, factor(0));
+    if (available()) current_ = to_fixed(mesh_, 0, scaling_, format_, factor(0), with_tags_);
   }
   bool available() const { return next_ < mesh_.triangle_count(); }
   const TriangleFx& front() const { return current_; }
   void pop() {
-    if (++next_ < mesh_.triangle_count()) current_ = to_fixed(mesh_, next_, scaling_, format_, factor(next_));
+    if (++next_ < mesh_.triangle_count())
+      current_ = to_fixed(mesh_, next_, scaling_, format_, factor(next_), with_tags_);
   }
   std::uint64_t vertices() const {
     if (factors_.empty()) return mesh_.triangle_count() * static_cast<std::uint64_t>(pattern_vertex_count(L_));
@@ -73,6 +75,7 @@ class MeshSource {
   NumberFormat format_;
   int L_;
   std::span<const std::uint8_t> factors_;
+  bool with_tags_ = false;
   std::size_t next_ = 0;
   TriangleFx current_;
 };

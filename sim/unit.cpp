@@ -40,7 +40,8 @@ int cpg_counter_load(const HardwareConfig& cfg, NormalMode normals, int cpg_gpe_
 Unit::Unit(const HardwareConfig& cfg, NormalMode normals, int cpg_gpe_cycles)
     : hw_(checked(cfg, normals)),
       tri_fifo_(cfg.tri_fifo_depth),
-      cpg_(normals, cfg.format, cpg_counter_load(cfg, normals, cpg_gpe_cycles), cfg.cpg_mapping == CpgMapping::Gpe),
+      cpg_(normals, cfg.format, cpg_counter_load(cfg, normals, cpg_gpe_cycles), cfg.cpg_mapping == CpgMapping::Gpe,
+           cfg.cpg_tags != 0, cfg.cpg),
       te_(cfg.int_blocks, cfg.int_latency, cfg.te_contexts, normals, cfg.format),
       vtx_fifo_(cfg.vtx_fifo_depth),
       counters_(cfg.int_blocks) {

@@ -77,6 +77,7 @@ class Unit {
   const std::array<std::uint64_t, kTeClasses.size()>& te_class_cycles() const { return counters_.te_class_cycles(); }
   const HardwareConfig& hardware() const { return hw_; }
   int cpg_cycles() const { return cpg_.cycles(); }  // C of doc §5 for this configuration
+  std::uint64_t cpg_tag_cycles() const { return cpg_.tag_cycles(); }  // added by scalar tags
 
   // Observability of the cycle last simulated by tick().
   const CycleActivity& activity() const { return act_; }

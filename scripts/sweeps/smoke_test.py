@@ -106,7 +106,8 @@ def main():
             if not same(row[key], value):
                 fail(f"parameter {key}: CSV {row[key]!r}, tessim {value!r}")
         flat = {}
-        flatten("", {k: v for k, v in stats.items() if k not in ("config", "mesh", "units")}, flat)
+        # Not columns: the parameters, the units and the timeline (a time series).
+        flatten("", {k: v for k, v in stats.items() if k not in ("config", "mesh", "units", "timeline")}, flat)
         for key, value in flat.items():
             if key not in row:
                 fail(f"statistic column '{key}' missing")

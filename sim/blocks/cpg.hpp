@@ -28,13 +28,20 @@ const char* to_string(CpgClass c);
 class CpgBlock {
  public:
   // cycles: C, the counter load value at accept (sim::cpg_cycles or the GPE-mapped C).
-  CpgBlock(NormalMode normals, const NumberFormat& format, int cycles, bool gpe_mapping)
-      : normals_(normals), format_(format), cycles_(cycles), gpe_mapping_(gpe_mapping) {}
+  // tags: the CPG takes scalar tags (HardwareConfig::cpg_tags); a tagged triangle then computes
+  // for cpg_tag_cycles more (on the GPE mapping too: the same operations on the GPE).
+  CpgBlock(NormalMode normals, const NumberFormat& format, int cycles, bool gpe_mapping, bool tags = false,
+           const CpgVariant& variant = {})
+      : normals_(normals), format_(format), cycles_(cycles), gpe_mapping_(gpe_mapping), tags_(tags),
+        variant_(variant) {}
 
   void reset() {
     busy_ = false;
     counter_ = 0;
+    tag_cycles_ = 0;
   }
+  // CPG cycles (spare GPE cycles on the GPE mapping) the tagged triangles added so far.
+  std::uint64_t tag_cycles() const { return tag_cycles_; }
 
   bool busy() const { return busy_; }
   int cycles() const { return cycles_; }
@@ -86,6 +93,11 @@ class CpgBlock {
         latch_ = tri_front;
         busy_ = true;
         counter_ = gpe_mapping_ ? cycles_ : cycles_ - 1;
+        if (tags_) {
+          const int extra = cpg_tag_cycles(latch_, format_, variant_);
+          counter_ += extra;
+          tag_cycles_ += static_cast<std::uint64_t>(extra);
+        }
         break;
       case CpgAction::Compute: --counter_; break;
       case CpgAction::Write: {
@@ -106,6 +118,9 @@ class CpgBlock {
   NumberFormat format_;
   int cycles_;
   bool gpe_mapping_;
+  bool tags_;
+  CpgVariant variant_;
+  std::uint64_t tag_cycles_ = 0;  // cycles added by tags since reset
   bool busy_ = false;
   int counter_ = 0;
   TriangleFx latch_;

@@ -20,6 +20,7 @@
 #include "sim/datapath.hpp"
 #include "sim/host.hpp"
 #include "sim/reference_check.hpp"
+#include "sim/simulate.hpp"
 
 namespace tessim::sim {
 namespace {
@@ -180,6 +181,93 @@ TEST(StpnFixed, SigmaBeyondTheFormatIsBadInput) {
   mesh.tags[mesh.triangles[t][0]].sigma = 9.0;  // Q3.20 holds values below 8
   EXPECT_THROW(to_fixed(mesh, t, host_scaling(mesh), kFormat, 4, true), InputError);
   EXPECT_NO_THROW(to_fixed(mesh, t, host_scaling(mesh), kFormat, 4, false));  // tags not taken
+}
+
+}  // namespace
+}  // namespace tessim::sim
+
+// ---- the cycle model with a CPG that takes tags (cpg_tags) ----------------------------------
+
+namespace tessim::sim {
+namespace {
+
+TEST(StpnCycleModel, TagCyclesFollowTheSchedule) {
+  TriangleFx tri;
+  const NumberFormat f{};  // W = 24: D = 24 at r = 1, 6 at r = 4
+  EXPECT_EQ(cpg_tag_cycles(tri, f), 0);  // neutral: plain PN, no extra cycle
+  tri.tags[0].delta = {1, 0, 0};
+  // face normal 2 + side 1 + three normalizations of 2 + 2D + two tangents of 2 cycles
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 1}), 2 + 1 + 3 * (2 + 48) + 2 * 2);
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 4}), 2 + 1 + 3 * (2 + 12) + 2 * 2);
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {3, 1}), 2 + 1 + 3 * (2 + 48) + 2);  // one corner, one tangent per lane
+  tri.tags[1].delta = {0, 1, 0};
+  tri.tags[2].theta = 5;  // θ only: X alone
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 1}), 2 + 2 * (1 + 3 * 50) + 50 + 6 * 2);
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {3, 1}), 2 + (1 + 3 * 50) + 2 * 2);
+}
+
+struct TaggedRun {
+  SimResult result;
+  std::vector<VertexFx> vertices;
+};
+
+TaggedRun run(const Mesh& mesh, UnitConfig cfg, bool fast_forward = true) {
+  TaggedRun r;
+  SimHooks hooks;
+  hooks.fast_forward = fast_forward;
+  hooks.on_vertex = [&](const VertexFx& v) { r.vertices.push_back(v); };
+  r.result = simulate(mesh, cfg, hooks);
+  return r;
+}
+
+TEST(StpnCycleModel, TaggedRunsComputeTheFixedPointArithmeticAndTakeTheirCycles) {
+  const Mesh mesh = import_st_mesh("/usr/share/assimp/models/Collada/Cinema4D.dae", StImportOptions{}).mesh;
+  for (const CpgVariant variant : {CpgVariant{1, 1}, CpgVariant{3, 4}}) {
+    UnitConfig cfg;
+    cfg.tess_factor = 3;
+    cfg.cpg = variant;
+    cfg.validate();
+    const TaggedRun plain = run(mesh, cfg);
+    cfg.cpg_tags = 1;
+    const TaggedRun tagged = run(mesh, cfg);
+    const HostScaling scaling = host_scaling(mesh);
+    std::vector<VertexFx> expected;
+    std::uint64_t tag_cycles = 0;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const TriangleFx tri = to_fixed(mesh, t, scaling, cfg.format, cfg.tess_factor, true);
+      tag_cycles += static_cast<std::uint64_t>(cpg_tag_cycles(tri, cfg.format, variant));
+      for (const VertexFx& v : evaluate_patch(tri, cfg.normals, cfg.format)) expected.push_back(v);
+    }
+    ASSERT_EQ(tagged.vertices.size(), expected.size());
+    EXPECT_TRUE(tagged.vertices == expected) << "the cycle model's vertices are the datapath's";
+    EXPECT_FALSE(plain.vertices == expected) << "the tags change the surface";
+    EXPECT_GT(tag_cycles, 0u);
+    EXPECT_EQ(tagged.result.cpg_tag_cycles, tag_cycles);
+    EXPECT_EQ(plain.result.cpg_tag_cycles, 0u);
+    // With the sequential CPG the workload is CPG-bound: the added cycles show in the run; the
+    // fast CPG (three lanes, r = 4) hides them behind the geometry engine.
+    if (variant == CpgVariant{1, 1}) EXPECT_GT(tagged.result.unit.cycles, plain.result.unit.cycles + tag_cycles / 2);
+    else EXPECT_GE(tagged.result.unit.cycles, plain.result.unit.cycles);
+    EXPECT_EQ(tagged.result.unit.cpg.busy, plain.result.unit.cpg.busy + tag_cycles);
+
+    // Fast-forward stays exact with tags.
+    const TaggedRun slow = run(mesh, cfg, false);
+    EXPECT_EQ(slow.result.unit, tagged.result.unit);
+    EXPECT_EQ(slow.result.gpe, tagged.result.gpe);
+    EXPECT_TRUE(slow.vertices == tagged.vertices);
+  }
+}
+
+TEST(StpnCycleModel, AnUntaggedMeshRunsAlikeWithAndWithoutTheTaggedCpg) {
+  const Mesh mesh = load_mesh("/usr/share/assimp/models/PLY/Wuson.ply");
+  UnitConfig cfg;
+  cfg.tess_factor = 2;
+  const TaggedRun a = run(mesh, cfg);
+  cfg.cpg_tags = 1;
+  const TaggedRun b = run(mesh, cfg);
+  EXPECT_EQ(a.result.unit, b.result.unit);
+  EXPECT_TRUE(a.vertices == b.vertices);
+  EXPECT_EQ(b.result.cpg_tag_cycles, 0u);
 }
 
 }  // namespace
