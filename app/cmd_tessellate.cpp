@@ -35,9 +35,14 @@ void run_tessellate(const TessellateArgs& args) {
   if (!is_supported_output(args.output))
     throw InputError(args.output, "output",
                      "unsupported extension '" + std::filesystem::path(args.output).extension().string() +
-                         "' (use .ply or .obj)");
-
-  check_output_paths({{"-o", args.output}});
+                         "' (use .ply or .obj, or - for standard output)");
+  // "-": binary PLY on standard output (compute measured apart from the file system, or piped);
+  // the summary then goes to standard error.
+  const bool to_stdout = args.output == "-";
+  if (to_stdout && args.weld)
+    throw InputError("tessellate", "--weld", "writes a file: give -o OUT.ply or OUT.obj");
+  if (!to_stdout) check_output_paths({{"-o", args.output}});
+  std::FILE* report = to_stdout ? stderr : stdout;
 
   const Mesh mesh = load_mesh(args.mesh);
   PatternCache patterns(settings);
@@ -63,8 +68,8 @@ void run_tessellate(const TessellateArgs& args) {
       writer.add_patch(patch.positions, patch.normals, keys, indices);
     });
     writer.write(args.output);
-    std::printf("welded: %" PRIu64 " patch vertices into %" PRIu64 " distinct vertices\n", writer.vertices_in(),
-                writer.vertices_out());
+    std::fprintf(report, "welded: %" PRIu64 " patch vertices into %" PRIu64 " distinct vertices\n",
+                 writer.vertices_in(), writer.vertices_out());
   } else {
     MeshWriter writer(args.output, counts.vertices, counts.triangles);
     summary = tessellate_mesh(mesh, settings, mode, [&](const PatchView& patch) {
@@ -80,15 +85,15 @@ void run_tessellate(const TessellateArgs& args) {
                  "tessim: warning: %s: %" PRIu64 " zero-area input triangles, %" PRIu64
                  " mid-edge normal fallbacks (zero-length edges), %zu vertices with the +Z fallback normal\n",
                  mesh.source.c_str(), summary.degenerate_triangles, summary.degenerate_edges, stats.normal_fallbacks);
-  std::printf("%s: %" PRIu64 " patches, %" PRIu64 " vertices, %" PRIu64 " triangles, %" PRIu64
+  std::fprintf(report, "%s: %" PRIu64 " patches, %" PRIu64 " vertices, %" PRIu64 " triangles, %" PRIu64
               " INT ops, %" PRIu64 " degenerate events (%s, %s normals)\n",
-              args.output.c_str(), summary.patches, summary.vertices, summary.triangles, summary.int_ops,
+              to_stdout ? "standard output" : args.output.c_str(), summary.patches, summary.vertices, summary.triangles, summary.int_ops,
               summary.degenerate_triangles + summary.degenerate_edges, settings.describe().c_str(),
               std::string(to_string(mode)).c_str());
   if (summary.culled > 0)
-    std::printf("%" PRIu64 " patches culled (a factor <= 0 or NaN)\n", summary.culled);
+    std::fprintf(report, "%" PRIu64 " patches culled (a factor <= 0 or NaN)\n", summary.culled);
   if (mesh.has_tags())
-    std::printf("scalar-tagged PN: %zu tagged vertices (docs/stpn.md)\n",
+    std::fprintf(report, "scalar-tagged PN: %zu tagged vertices (docs/stpn.md)\n",
                 static_cast<std::size_t>(std::count_if(mesh.tags.begin(), mesh.tags.end(),
                                                        [](const VertexTags& t) { return t.tagged(); })));
 }
@@ -102,7 +107,9 @@ void register_tessellate(CLI::App& app) {
   add_pattern_options(*cmd, args->pattern, "tessellate");
   cmd->add_option("--normals", args->normals, "Normal field: quadratic, reflect, linear, derivative")
       ->capture_default_str();
-  cmd->add_option("-o,--output", args->output, "Output mesh: .ply (binary, double precision) or .obj")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "Output mesh: .ply (binary, double precision) or .obj; - writes binary PLY to standard output")
+      ->required();
   cmd->add_flag("--weld", args->weld,
                 "Write the vertices that patches share (corners, edge points) once, found by their place on the "
                 "input mesh and exact barycentric weights");

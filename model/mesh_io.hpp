@@ -53,7 +53,8 @@ MeshStats mesh_stats(const Mesh& mesh);
 // Streams a tessellated mesh to PLY (binary little-endian) or OBJ, chosen by the extension
 // of `path`; anything else is an InputError. Vertex and triangle totals must be known up front
 // (PLY's header needs them). Patches are appended one at a time; nothing reaches `path` until
-// finish() succeeds (the file is written to a temporary and renamed).
+// finish() succeeds (the file is written to a temporary and renamed). The path "-" is standard
+// output, as binary PLY, written as it comes (a pipe cannot be taken back).
 class MeshWriter {
  public:
   MeshWriter(const std::filesystem::path& path, std::uint64_t total_vertices,
@@ -78,7 +79,7 @@ class MeshWriter {
   std::unique_ptr<Impl> impl_;
 };
 
-// Returns true if `path` has an extension MeshWriter accepts (.ply or .obj, any case).
+// Returns true if `path` has an extension MeshWriter accepts (.ply or .obj, any case), or is "-".
 bool is_supported_output(const std::filesystem::path& path);
 
 }  // namespace tessim

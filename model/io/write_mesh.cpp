@@ -2,6 +2,8 @@
 // (MeshWriter in model/mesh_io.hpp); whole meshes, tags included, as PLY (write_ply).
 #include <bit>
 #include <charconv>
+#include <iostream>
+#include <optional>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -43,16 +45,24 @@ void append_raw(std::string& s, const void* data, std::size_t size) { s.append(s
 
 bool is_supported_output(const std::filesystem::path& path) {
   const std::string ext = io::lower_extension(path);
-  return ext == ".ply" || ext == ".obj";
+  return ext == ".ply" || ext == ".obj" || path == "-";
 }
 
 struct MeshWriter::Impl {
   Impl(const std::filesystem::path& target, bool ply, std::uint64_t vertices, std::uint64_t triangles)
-      : path(target), is_ply(ply), out(target, ply), total_vertices(vertices), total_triangles(triangles) {}
+      : path(target), is_ply(ply), total_vertices(vertices), total_triangles(triangles) {
+    if (target == "-") {
+      stream = &std::cout;
+    } else {
+      file.emplace(target, ply);
+      stream = &file->stream();
+    }
+  }
 
   std::filesystem::path path;
   bool is_ply;
-  AtomicOutput out;
+  std::optional<AtomicOutput> file;  // none for standard output
+  std::ostream* stream = nullptr;
   std::uint64_t total_vertices;
   std::uint64_t total_triangles;
   std::uint64_t vertices = 0;
@@ -77,16 +87,16 @@ struct MeshWriter::Impl {
   static constexpr std::size_t kBlock = std::size_t{1} << 20;
 
   void write_buffer() {
-    out.stream().write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    stream->write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
     buffer.clear();
-    if (!out.stream()) throw InputError(path.string(), "output", "write failed");
+    if (!*stream) throw InputError(path == "-" ? "standard output" : path.string(), "output", "write failed");
   }
 };
 
 MeshWriter::MeshWriter(const std::filesystem::path& path, std::uint64_t total_vertices, std::uint64_t total_triangles) {
   if (!is_supported_output(path))
     throw InputError(path.string(), "output", "unsupported extension '" + path.extension().string() + "' (use .ply or .obj)");
-  const bool ply = io::lower_extension(path) == ".ply";
+  const bool ply = path == "-" || io::lower_extension(path) == ".ply";
   if (ply && total_vertices > std::numeric_limits<std::uint32_t>::max())
     throw InputError(path.string(), "output", std::to_string(total_vertices) + " vertices do not fit PLY's 32-bit indices");
   impl_ = std::make_unique<Impl>(path, ply, total_vertices, total_triangles);
@@ -211,7 +221,12 @@ void MeshWriter::finish() {
     }
   }
   w.write_buffer();
-  w.out.commit();
+  if (w.file) {
+    w.file->commit();
+  } else {
+    w.stream->flush();
+    if (!*w.stream) throw InputError("standard output", "output", "write failed");
+  }
   w.finished = true;
 }
 

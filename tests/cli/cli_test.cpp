@@ -130,6 +130,23 @@ void expect_refused(const std::vector<std::string>& args, const std::vector<std:
   EXPECT_TRUE(left.empty()) << "files created: " << ::testing::PrintToString(left);
 }
 
+// -o - streams binary PLY to standard output, byte for byte what -o OUT.ply writes, with the
+// summary on standard error; --weld needs a file.
+TEST(CliTessellate, StandardOutputCarriesTheSameBytesAsAFile) {
+  CliDirs d;
+  const fs::path file = d.work.path() / "out.ply";
+  const RunResult to_file = tessim({"tessellate", kWuson.string(), "-L", "5", "-o", file.string()}, d.scratch.path());
+  ASSERT_EQ(to_file.status, 0) << to_file.err;
+  const RunResult piped = tessim({"tessellate", kWuson.string(), "-L", "5", "-o", "-"}, d.scratch.path());
+  ASSERT_EQ(piped.status, 0) << piped.err;
+  EXPECT_TRUE(piped.out == slurp(file)) << piped.out.size() << " bytes on stdout";
+  EXPECT_NE(piped.err.find("standard output: 3732 patches"), std::string::npos) << piped.err;
+  const RunResult weld = tessim({"tessellate", kWuson.string(), "-o", "-", "--weld"}, d.scratch.path());
+  EXPECT_EQ(weld.status, 2);
+  EXPECT_NE(weld.err.find("tessim: error: tessellate: --weld:"), std::string::npos) << weld.err;
+  EXPECT_TRUE(weld.out.empty());
+}
+
 TEST(CliTessellate, RefusesBadInputWithoutWritingAnything) {
   if (!fs::exists(kWuson)) GTEST_SKIP() << kWuson << " not installed (assimp-testmodels)";
   CliDirs d;
