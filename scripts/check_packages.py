@@ -54,9 +54,6 @@ OPTIONAL_FILES = [
     (r"^/usr/lib/python3/dist-packages/_distutils_hack/", "imported by setuptools' .pth file, when installed"),
     (r"^/usr/lib/python3/dist-packages/[^/]+\.(?:dist|egg)-info/entry_points\.txt$",
      "importlib.metadata reads every installed distribution's entry points (Dask looks up its plugins)"),
-    (r"^/usr/lib/python3/dist-packages/[^/]+\.(?:dist|egg)-info/(?:PKG-INFO|METADATA|namespace_packages\.txt)$",
-     "CMake's FindPython3 probes the interpreter through distutils, whose setuptools shim reads every "
-     "installed distribution's metadata (the Python module's configure)"),
     (r"^/usr/lib/debug/", "symbolizers read separate debug information when it is installed"),
     (r"^/usr/share/fonts/", "fontconfig offers every installed font; Chromium opens faces that happen to be there "
                             "(DejaVu Sans Oblique of fonts-dejavu-extra at start-up) and draws without them"),
