@@ -69,10 +69,6 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
                        "no RTL build '" + a.variant + "'; the RTL builds are " + known_builds());
     return a.variant;
   }
-  if (cfg.cpg_tags)
-    throw InputError(flags.config_file().empty() || flags.overrides().contains("cpg_tags") ? "command line"
-                                                                                          : flags.config_file(),
-                     "cpg_tags", "the RTL's CPG computes plain PN: no RTL build takes scalar tags yet (cycle model only)");
   if (const std::optional<std::string> v = rtl::find_rtl_variant(cfg.hardware(), a.verif)) return *v;
   const std::string source = flags.config_file().empty() || flags.overrides().contains("int_blocks")
                                  ? "command line"
@@ -80,7 +76,8 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
   throw InputError(source, "int_blocks",
                    "no RTL build implements this hardware (int_blocks " + std::to_string(cfg.int_blocks) +
                        ", cpg_lanes " + std::to_string(cfg.cpg.lanes) + ", cpg_digit_bits " +
-                       std::to_string(cfg.cpg.digit_bits) + (a.verif ? ", --verif" : "") +
+                       std::to_string(cfg.cpg.digit_bits) + ", cpg_tags " + std::to_string(cfg.cpg_tags) +
+                       (a.verif ? ", --verif" : "") +
                        "); the RTL builds are " + known_builds() + " (docs/rtl.md adds one)");
 }
 
@@ -126,12 +123,13 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     source = std::to_string(a.random_count) + " random triangles";
   } else {
     const Mesh mesh = load_mesh(a.mesh);
-    warn_tags_ignored(mesh, "cosim");
+    if (!cfg.cpg_tags) warn_tags_ignored(mesh, "cosim");
     const sim::HostScaling scaling = sim::host_scaling(mesh);
     const std::vector<std::uint8_t> factors = adaptive ? uniform_factors_covering(*adaptive, mesh) : std::vector<std::uint8_t>{};
     stream.reserve(mesh.triangle_count());
     for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
-      stream.push_back(sim::to_fixed(mesh, i, scaling, cfg.format, factors.empty() ? cfg.tess_factor : factors[i]));
+      stream.push_back(sim::to_fixed(mesh, i, scaling, cfg.format, factors.empty() ? cfg.tess_factor : factors[i],
+                                     cfg.cpg_tags != 0));
     source = a.mesh + (adaptive ? " (" + adaptive->describe() + ", covered by the uniform pattern)" : "");
   }
 
@@ -165,7 +163,8 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     opts.seed = cfg.seed + static_cast<std::uint64_t>(s);
     opts.unit.seed = opts.seed;
     if (a.random_count > 0)
-      stream = cosim::random_triangles(a.random_count, opts.seed, cfg.format, a.random_max_L, 0.1, a.random_extent);
+      stream = cosim::random_triangles(a.random_count, opts.seed, cfg.format, a.random_max_L, 0.1, a.random_extent,
+                                       cfg.cpg_tags != 0);
     std::cout << "stream: " << source << "\n";
     const cosim::CosimReport rep = cosim::run_cosim(stream, opts);
     std::cout << cosim::format_report(rep, opts) << std::flush;
@@ -195,7 +194,9 @@ void register_cosim(CLI::App& app) {
   auto args = std::make_shared<CosimArgs>();
   CLI::App* cmd = app.add_subcommand("cosim", "Lock-step co-simulation of the Verilated RTL against the cycle model");
   cmd->add_option("mesh", args->mesh, "Input mesh (default: Debian's assimp-testmodels Wuson.ply)");
-  cmd->add_option("--random", args->random_count, "Use N random triangles (with degenerate ones) instead of a mesh")
+  cmd->add_option("--random", args->random_count,
+                  "Use N random triangles (with degenerate ones; with --cpg-tags 1 also random scalar tags) instead "
+                  "of a mesh")
       ->transform(number_check<std::size_t>("command line", "--random", type_range<std::size_t>()));
   cmd->add_option("--random-max-L", args->random_max_L, "Largest factor of the random triangles (1..64)")
       ->transform(number_check<int>("command line", "--random-max-L", "1..64"));

@@ -269,9 +269,16 @@ std::string format_report(const CosimReport& r, const CosimOptions& o) {
 }
 
 std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t seed, const sim::NumberFormat& fmt,
-                                              int max_L, double degenerate_share, double extent) {
+                                              int max_L, double degenerate_share, double extent, bool with_tags) {
   const double limit = std::ldexp(static_cast<double>(fmt.coord_max()), -fmt.coord_frac_bits);
   sim::SplitMix64 rng(seed ^ 0x5eedc0de5eedc0deULL);
+  sim::SplitMix64 tag_rng(seed ^ 0x7a9575a97a9575a9ULL);
+  auto tag_uni = [&](double lo, double hi) { return lo + (hi - lo) * tag_rng.uniform(); };
+  // A tag scalar: often exactly 0 or 1 (the ends of σ's range), else uniform in [lo, hi].
+  auto tag_scalar = [&](double lo, double hi) {
+    const std::uint64_t pick = tag_rng.next() % 4;
+    return pick == 0 ? 0.0 : pick == 1 ? 1.0 : tag_uni(lo, hi);
+  };
   auto uni = [&](double lo, double hi) { return lo + (hi - lo) * rng.uniform(); };
   std::vector<sim::TriangleFx> out;
   out.reserve(count);
@@ -300,6 +307,18 @@ std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t s
     }
     t.L = 1 + static_cast<int>(rng.next() % static_cast<std::uint64_t>(max_L));
     t.id = static_cast<std::uint32_t>(i);
+    for (int v = 0; with_tags && v < 3; ++v) {
+      sim::TagsFx& tags = t.tags[v];
+      const std::uint64_t kind = tag_rng.next() % 8;  // 0..3 crease, 4..5 θ only, 6..7 neutral
+      if (kind < 4) {
+        const glm::dvec3 delta(tag_uni(-1, 1), tag_uni(-1, 1), tag_uni(-1, 1));
+        tags.delta = sim::quantize(delta, fmt);
+        tags.sigma = sim::quantize(tag_scalar(0, 1), fmt);
+        tags.beta = sim::quantize(tag_uni(-1, 1), fmt);
+      }
+      if (kind < 4) tags.theta = sim::quantize(kind % 2 ? tag_scalar(-1, 1) : 0.0, fmt);
+      else if (kind < 6) tags.theta = sim::quantize(kind == 4 ? 1.0 : tag_uni(-1, 1), fmt);
+    }
     out.push_back(t);
   }
   return out;

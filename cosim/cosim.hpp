@@ -77,8 +77,12 @@ std::string format_report(const CosimReport& r, const CosimOptions& opts);
 // face normal, factors 1..max_L, and a share of degenerate triangles (repeated vertices,
 // collinear points, opposite normals). `extent` scales the positions (clamped to the coordinate
 // range): near 2^I the control points leave the range and the arithmetic saturates.
+// `with_tags`: every corner also gets random scalar tags (neutral, θ only, or a crease with
+// σ, θ and β, including σ = 0 and 1 and all three corners tagged), drawn from a generator of their
+// own, so the geometry of a seed's stream is the same with and without them.
 std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t seed,
                                               const sim::NumberFormat& fmt, int max_L,
-                                              double degenerate_share = 0.1, double extent = 1.0);
+                                              double degenerate_share = 0.1, double extent = 1.0,
+                                              bool with_tags = false);
 
 }  // namespace tessim::cosim

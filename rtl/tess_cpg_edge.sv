@@ -36,6 +36,8 @@ module tess_cpg_edge #(
   input  logic                          mode_reflect_i,
   input  logic                          edge_i,       // computing step step_i of an edge
   input  logic [StepW-1:0]              step_i,
+  input  logic                          keep_a_i,     // the tangent point near a is this lane's
+  input  logic                          keep_b_i,     // (else the tag pass computes it)
   input  logic [3*W-1:0]                pa_i,         // component c at [cW +: W]
   input  logic [3*W-1:0]                pb_i,
   input  logic [3*W-1:0]                na_i,
@@ -200,8 +202,8 @@ module tess_cpg_edge #(
       .sat_o(tangent_sat[c])
     );
   end
-  assign tangent_a_o = st_dot_b;
-  assign tangent_b_o = st_dot_s;
+  assign tangent_a_o = st_dot_b && keep_a_i;
+  assign tangent_b_o = st_dot_s && keep_b_i;
 
   // ------------------------------------------------------------------ b111
   // b111 = sat(round_half_up((3 sum(t) - 2 sum(P)) * round(2^G/12), G))
@@ -316,7 +318,7 @@ module tess_cpg_edge #(
   // Flags of this cycle's results (tess_cpg keeps them sticky per triangle).
   always_comb begin
     flags_o = '0;
-    if ((st_dot_b || st_dot_s) && (tangent_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
+    if ((tangent_a_o || tangent_b_o) && (tangent_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
     if ((st_div1_last || st_div2_last) && (div_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
     if ((st_div1_last || st_div2_last) && (div_dbz != '0)) flags_o |= tess_pkg::FlagDivByZero;
     if (st_m && (m_sat != '0)) flags_o |= tess_pkg::FlagSaturated;

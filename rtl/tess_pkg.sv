@@ -17,6 +17,7 @@ package tess_pkg;
   localparam int unsigned VtxFifoDepth  = 2;   // Dv
   localparam int unsigned CpgLanes      = 1;   // CPG edge lanes: 1 (edges in turn) or 3 (at once)
   localparam int unsigned CpgDigitBits  = 1;   // r: CPG divider / square-root bits per cycle
+  localparam int unsigned CpgTags       = 0;   // 1: the input stream carries scalar tags (STPN)
   // Deliberate faults that prove the co-simulation checker can fail:
   // 1 = INT rounding drops the +half (floor instead of round half up);
   // 2 = retirement of a patch's last vertex ignores a full VTX FIFO (the vertex is lost).

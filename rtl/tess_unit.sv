@@ -13,6 +13,7 @@ module tess_unit #(
   parameter int unsigned VtxFifoDepth  = tess_pkg::VtxFifoDepth,
   parameter int unsigned CpgLanes      = tess_pkg::CpgLanes,
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
+  parameter int unsigned CpgTags       = tess_pkg::CpgTags,
   parameter int unsigned InjectBug     = tess_pkg::InjectBug,
   localparam int unsigned W            = 1 + CoordIntBits + CoordFracBits,
   localparam int unsigned CtrW         = tess_pkg::CounterBits
@@ -27,6 +28,8 @@ module tess_unit #(
   input  logic [9*W-1:0]                  tri_n_i,
   input  logic [tess_pkg::FactorBits-1:0] tri_l_i,
   input  logic [tess_pkg::IdBits-1:0]     tri_id_i,
+  // Scalar tags, read only with CpgTags: vertex v's Δ (3W), σ, θ, β at [6vW +: 6W]
+  input  logic [18*W-1:0]                 tri_tags_i,
   // Vertices out
   output logic                            vtx_valid_o,
   input  logic                            vtx_ready_i,
@@ -60,7 +63,7 @@ module tess_unit #(
   localparam int unsigned LBits  = tess_pkg::FactorBits;
   localparam int unsigned IdBits = tess_pkg::IdBits;
   localparam int unsigned FlagW  = tess_pkg::FlagBits;
-  localparam int unsigned TriW   = 18 * W + LBits + IdBits;
+  localparam int unsigned TriW   = 18 * W + LBits + IdBits + ((CpgTags != 0) ? 18 * W : 0);
   localparam int unsigned VtxW   = 6 * W + 2 * (BaryBits + 1) + 3 * LBits + IdBits + 1 + FlagW;
   localparam int unsigned TriCntW = $clog2(TriFifoDepth + 1);
   localparam int unsigned VtxCntW = $clog2(VtxFifoDepth + 1);
@@ -72,11 +75,20 @@ module tess_unit #(
   assign tri_ready_o = !tri_full;
   assign tri_push    = tri_valid_i && tri_ready_o;
 
+  logic [TriW-1:0] tri_in;
+  if (CpgTags != 0) begin : g_tri_tags
+    assign tri_in = {tri_tags_i, tri_id_i, tri_l_i, tri_n_i, tri_p_i};
+  end else begin : g_tri_plain
+    logic unused_tags;  // a plain-PN unit ignores the tag inputs
+    assign unused_tags = ^tri_tags_i;
+    assign tri_in = {tri_id_i, tri_l_i, tri_n_i, tri_p_i};
+  end
+
   tess_fifo #(.Width(TriW), .Depth(TriFifoDepth)) u_tri_fifo (
     .clk_i  (clk_i),
     .rst_ni (rst_ni),
     .push_i (tri_push),
-    .data_i ({tri_id_i, tri_l_i, tri_n_i, tri_p_i}),
+    .data_i (tri_in),
     .pop_i  (tri_pop),
     .data_o (tri_head),
     .count_o(tri_count),
@@ -97,7 +109,8 @@ module tess_unit #(
     .CoordIntBits (CoordIntBits),
     .CoordFracBits(CoordFracBits),
     .CpgLanes     (CpgLanes),
-    .CpgDigitBits (CpgDigitBits)
+    .CpgDigitBits (CpgDigitBits),
+    .CpgTags      (CpgTags)
   ) u_cpg (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),

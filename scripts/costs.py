@@ -57,6 +57,7 @@ CACHE_SCHEMA = 2
 
 # Row parameter -> tess_unit parameter, from `tessim schema` (set by main()).
 RTL_PARAMS = []
+RTL_DEFAULTS = {}  # parameter key -> default, for results that do not list it
 SYMBOLS = {}  # tess_unit parameter -> symbol of docs/microarchitecture.md
 BLOCK_PREFIX = {"tess_unit": "cost_unit", "tess_cpg": "cost_cpg", "tess_int": "cost_int"}
 
@@ -85,7 +86,8 @@ def parse_where(groups):
 
 
 def rtl_config(row):
-    return tuple((name, int(row[key])) for key, name in RTL_PARAMS)
+    # A results file written before a parameter existed holds its default (`tessim schema`).
+    return tuple((name, int(row[key] if key in row else RTL_DEFAULTS[key])) for key, name in RTL_PARAMS)
 
 
 def describe(config):
@@ -96,6 +98,7 @@ def load_rtl_params(tessim):
     """The parameters of the RTL and their symbols, as `tessim schema` lists them."""
     sch = sweep.schema(tessim)
     RTL_PARAMS[:] = [(p["key"], p["rtl"]) for p in sch["parameters"] if p["rtl"]]
+    RTL_DEFAULTS.update({p["key"]: p["default"] for p in sch["parameters"] if p["rtl"]})
     SYMBOLS.update({p["rtl"]: p["symbol"] for p in sch["parameters"] if p["rtl"]})
     return sch
 
@@ -141,7 +144,7 @@ def cache_key(config, digest, yosys, xilinx, cpg_only=False):
 
 
 # The CPG's own parameters, and the ones it shares with the unit (the coordinate format).
-CPG_PARAMS = ("CpgLanes", "CpgDigitBits")
+CPG_PARAMS = ("CpgLanes", "CpgDigitBits", "CpgTags")
 CPG_FORMAT_PARAMS = ("CoordIntBits", "CoordFracBits")
 
 

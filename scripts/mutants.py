@@ -26,7 +26,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL_BUILDS = "n1;n3_lat3"
 N3 = ["--variant", "n3_lat3", "--int", "3", "--int-latency", "3", "--contexts", "6", "--cpg-lanes", "3",
-      "--cpg-digit-bits", "5"]
+      "--cpg-digit-bits", "5", "--cpg-tags", "1"]
 WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
 # Stimulus, in order; a mutant is run until the first failure. Together: every normal mode,
 # N = 1 and N = 3, INT latency 3, no / constant / random backpressure, degenerate triangles, a
@@ -41,6 +41,10 @@ STIMULUS = [
     ("saturating reflect N=1", ["--random", "120", "--random-max-L", "3", "--random-extent", "30", "--normals",
                                 "reflect", "--gpe-cycles", "1", "--variant", "n1", "--int", "1"]),
     ("Wuson L=3 quadratic N=3", [WUSON, "-L", "3"] + N3),
+    # n3_lat3 takes scalar tags: with cpg_tags 1 the random triangles carry random tags.
+    ("random tagged N=3 stall", ["--random", "40", "--random-max-L", "4", "--stall", "0.3", "--gpe-cycles", "2"] + N3),
+    ("random tagged reflect N=3", ["--random", "30", "--random-max-L", "3", "--normals", "reflect",
+                                   "--gpe-cycles", "1"] + N3),
     ("random linear N=1 K=1", ["--random", "40", "--random-max-L", "6", "--normals", "linear", "--gpe-cycles", "1",
                                "--variant", "n1", "--int", "1"]),
 ]

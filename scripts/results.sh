@@ -83,6 +83,8 @@ cp "$work/results.csv" "$out/results.csv"
 "$python" scripts/plots.py "$out/results.csv" --out "$out" --tessim "$tessim"
 if [[ $set_name == small ]]; then
   # Scalar tags against plain PN (load-balancing.md §12): meshes of their own, made by stpn-import.
-  "$python" scripts/stpn_study.py --tessim "$tessim" --out "$out" --jobs "$jobs" > "$out/stpn_table.md"
+  # and the Yosys cost of the CPG that takes them against the plain one.
+  "$python" scripts/stpn_study.py --tessim "$tessim" --out "$out" --jobs "$jobs" --cost-cache "$cost_cache" \
+    "${cost_mode[@]}" > "$out/stpn_table.md"
 fi
 echo "results.sh: $set_name set done in $((SECONDS - start)) s: $out" >&2

@@ -29,11 +29,11 @@ BUILDS = [
     ("n2", ["--int-blocks", "2"]),
     ("n3", ["--int-blocks", "3"]),
     ("n4", ["--int-blocks", "4"]),
-    ("n1_r4", ["--int-blocks", "1", "--cpg-digit-bits", "4"]),
-    ("n2_l3r8", ["--int-blocks", "2", "--cpg-lanes", "3", "--cpg-digit-bits", "8"]),
+    ("n1_r4", ["--int-blocks", "1", "--cpg-digit-bits", "4", "--cpg-tags", "1"]),
+    ("n2_l3r8", ["--int-blocks", "2", "--cpg-lanes", "3", "--cpg-digit-bits", "8", "--cpg-tags", "1"]),
     ("n3_lat3", ["--int-blocks", "3", "--int-latency", "3", "--te-contexts", "6", "--cpg-lanes", "3",
-                 "--cpg-digit-bits", "5"]),
-    ("n4_l3r24", ["--int-blocks", "4", "--cpg-lanes", "3", "--cpg-digit-bits", "24"]),
+                 "--cpg-digit-bits", "5", "--cpg-tags", "1"]),
+    ("n4_l3r24", ["--int-blocks", "4", "--cpg-lanes", "3", "--cpg-digit-bits", "24", "--cpg-tags", "1"]),
 ]
 
 

@@ -8,6 +8,10 @@ and 16, on meshes with hard edges made ST-meshes by `tessim stpn-import`.
 writes OUT/stpn.csv, OUT/stpn_cycles_per_vertex.png (and .svg) and prints the Markdown table of
 docs/results/load-balancing.md §12; scripts/results.sh runs it with the small set. Every run is
 deterministic (no random stalls), so a rerun reproduces every number.
+
+With --cost-cache DIR it also costs the CPG that takes scalar tags against the plain one
+(scripts/costs.py --compose-cpg, Yosys results looked up in DIR), writes OUT/stpn_costs.csv and
+prints a second table; --require-cached synthesizes nothing (fails if a cost is not recorded).
 """
 import argparse
 import csv
@@ -35,6 +39,8 @@ def main():
     ap.add_argument("--tessim", default="build/bin/tessim")
     ap.add_argument("--out", default="stpn-study", help="output directory (default ./stpn-study)")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--cost-cache", help="Yosys result cache of scripts/costs.py: also cost the tagged CPG")
+    ap.add_argument("--require-cached", action="store_true", help="with --cost-cache: synthesize nothing")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
 
@@ -115,6 +121,56 @@ def main():
                 print(f"| {os.path.basename(m)} | {c} | {L} | " + " / ".join(f"{r['cycles_per_vertex']:.2f}" for r in pn) +
                       " | " + " / ".join(f"{r['cycles_per_vertex']:.2f}" for r in st) + f" | {per_tri:.1f} | {limit} |")
     print(f"wrote {csv_path} and {png}", file=sys.stderr)
+    if a.cost_cache:
+        print()
+        cost_table(a)
+
+
+def cost_table(a):
+    """The CPG that takes scalar tags against the plain one, sequential and r = 4, in the unit with
+    N = 2 (default widths): Yosys through scripts/costs.py --compose-cpg."""
+    schema = json.loads(run(a.tessim, ["schema"]).stdout)
+    defaults = {p["key"]: p["default"] for p in schema["parameters"]}
+    rows = []
+    for cpg, flags in CPGS.items():
+        digit_bits = int(flags[1]) if flags else defaults["cpg_digit_bits"]
+        for tags in (0, 1):
+            row = dict(defaults)
+            row.update({"point": f"stpn-cost-{len(rows)}", "grids": "stpn_cost", "status": "ok", "cpg": cpg,
+                        "cpg_digit_bits": digit_bits, "cpg_tags": tags})
+            rows.append(row)
+    csv_path = os.path.join(a.out, "stpn_costs.csv")
+    with tempfile.TemporaryDirectory() as tmp:
+        work = os.path.join(tmp, "costs.csv")
+        with open(work, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+        here = os.path.dirname(os.path.abspath(__file__))
+        subprocess.run([sys.executable, os.path.join(here, "costs.py"), work, "--in-place", "--tessim", a.tessim,
+                        "--cache", a.cost_cache, "--compose-cpg", "--where", "grid=stpn_cost"]
+                       + (["--require-cached"] if a.require_cached else []), check=True)
+        with open(work, newline="") as f:
+            costed = list(csv.DictReader(f))
+    keep = ["cpg", "cpg_digit_bits", "cpg_tags"] + [k for k in costed[0] if k.startswith("cost_cpg_")
+                                                     or k in ("cost_unit_transistors", "cost_unit_depth")]
+    with open(csv_path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keep, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(costed)
+    print("| CPG | tags | CPG transistors | CPG cells | CPG flip-flops | CPG depth | CPG LUTs (Xilinx) | CPG DSPs | "
+          "unit transistors (N = 2) | tags add (CPG transistors) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for cpg in CPGS:
+        plain, tagged = (next(r for r in costed if r["cpg"] == cpg and int(r["cpg_tags"]) == t) for t in (0, 1))
+        for r in (plain, tagged):
+            add = (f"+{100 * (float(r['cost_cpg_transistors']) / float(plain['cost_cpg_transistors']) - 1):.0f} %"
+                   if r is tagged else "–")
+            print(f"| {cpg} | {'STPN' if int(r['cpg_tags']) else 'PN'} | {int(float(r['cost_cpg_transistors'])):,} | "
+                  f"{int(float(r['cost_cpg_cells'])):,} | {int(float(r['cost_cpg_flops'])):,} | "
+                  f"{int(float(r['cost_cpg_depth']))} | {int(float(r.get('cost_cpg_xilinx_lut') or 0)):,} | "
+                  f"{int(float(r.get('cost_cpg_xilinx_dsp') or 0))} | {int(float(r['cost_unit_transistors'])):,} | {add} |")
+    print(f"wrote {csv_path}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@
 #   N                   INT blocks (IntBlocks), default tess_pkg::IntBlocks
 #   -chparam NAME VALUE any other parameter of tess_unit (CoordIntBits, CoordFracBits,
 #                       BaryBits, IntLatency, Contexts, TriFifoDepth, VtxFifoDepth, CpgLanes,
-#                       CpgDigitBits)
+#                       CpgDigitBits, CpgTags)
 #   --json FILE         also write the numbers as JSON (FILE = - for stdout only)
 #   --no-blocks         only the whole unit
 #   --cpg-only          only the CPG (costs.py --compose-cpg: a CPG variant in a known unit)
@@ -56,7 +56,7 @@ done
 for name in "${order[@]}"; do
   [[ ${params[$name]} =~ ^[0-9]+$ ]] || { echo "synth.sh: $name must be a number" >&2; exit 2; }
   case "$name" in
-    CoordIntBits|CoordFracBits|BaryBits|IntBlocks|IntLatency|Contexts|TriFifoDepth|VtxFifoDepth|CpgLanes|CpgDigitBits) ;;
+    CoordIntBits|CoordFracBits|BaryBits|IntBlocks|IntLatency|Contexts|TriFifoDepth|VtxFifoDepth|CpgLanes|CpgDigitBits|CpgTags) ;;
     *) echo "synth.sh: tess_unit has no parameter '$name'" >&2; exit 2 ;;
   esac
 done
@@ -88,7 +88,7 @@ fi
 value() { if [[ -v "params[$1]" ]]; then echo "${params[$1]}"; else pkg_default "$1"; fi; }
 I=$(value CoordIntBits); F=$(value CoordFracBits); B=$(value BaryBits)
 N=$(value IntBlocks); LAT=$(value IntLatency); V=$(value Contexts)
-CL=$(value CpgLanes); CR=$(value CpgDigitBits)
+CL=$(value CpgLanes); CR=$(value CpgDigitBits); CT=$(value CpgTags)
 W=$((1 + I + F))
 idx_bits=1; while (( (1 << idx_bits) < V )); do idx_bits=$((idx_bits + 1)); done
 
@@ -100,7 +100,7 @@ chparams_for() {
     tess_unit)
       for name in "${order[@]}"; do out+="chparam -set $name ${params[$name]} tess_unit; "; done ;;
     tess_cpg)
-      out="chparam -set CoordIntBits $I -set CoordFracBits $F -set CpgLanes $CL -set CpgDigitBits $CR tess_cpg; " ;;
+      out="chparam -set CoordIntBits $I -set CoordFracBits $F -set CpgLanes $CL -set CpgDigitBits $CR -set CpgTags $CT tess_cpg; " ;;
     tess_int)
       out="chparam -set CoordWidth $W -set BaryBits $B -set Latency $LAT -set TagWidth $((idx_bits + 4)) tess_int; " ;;
   esac

@@ -203,7 +203,9 @@ int cpg_edge_cycles(NormalMode mode, const NumberFormat& f, int digit_bits) {
 int cpg_tag_cycles(const TriangleFx& tri, const NumberFormat& f, const CpgVariant& v) {
   const int D = cpg_digit_steps(f, v.digit_bits);
   const int normalization = 2 + 2 * D;  // scale and add, dot product, square root, division
-  constexpr int kFaceNormal = 2, kSide = 1, kTangent = 2;
+  // A tangent point: (1 - θ)(Pk - Pj), its third, the projection's dot product, d + Π m (one
+  // multiplication a cycle, rtl/tess_cpg_tag.sv).
+  constexpr int kFaceNormal = 2, kSide = 1, kTangent = 4;
   int corners = 0, slowest_corner = 0, any_tagged = 0;
   for (const TagsFx& t : tri.tags) {
     if (t.neutral()) continue;

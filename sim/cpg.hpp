@@ -27,8 +27,8 @@ struct TriangleFx {
   std::array<FxVec, 3> n{};  // N1, N2, N3 (unit length before quantisation)
   int L = 1;                 // tessification factor 1..64
   std::uint32_t id = 0;      // patch id, passed through to every output vertex
-  // Scalar tags per corner; all neutral for plain PN. Only the fixed-point scalar-tagged
-  // arithmetic reads them (compute_control_points); the unit's input stream carries no tags yet.
+  // Scalar tags per corner; all neutral for plain PN. They cross the input stream only to a CPG
+  // that takes them (cpg_tags; the RTL's CpgTags), which alone reads them.
   std::array<TagsFx, 3> tags{};
 };
 
@@ -71,8 +71,9 @@ int cpg_edge_cycles(NormalMode mode, const NumberFormat& fmt, int digit_bits = 1
 int cpg_cycles(NormalMode mode, const NumberFormat& fmt, const CpgVariant& variant = {});
 // Cycles a CPG that takes scalar tags adds for this triangle (0 when its tags are neutral;
 // docs/microarchitecture.md §5): the face normal, per non-neutral corner its normalizations
-// (N', Y and X for a tagged corner, X alone for a θ-only one), and two cycles per tagged
-// tangent. One lane takes the corners and edges in turn, three lanes one each at a time.
+// (N', Y and X for a tagged corner, X alone for a θ-only one), and four cycles per tangent point
+// of a non-neutral corner. One lane takes the corners and edges in turn, three lanes one each at
+// a time (rtl/tess_cpg.sv runs exactly this schedule).
 int cpg_tag_cycles(const TriangleFx& tri, const NumberFormat& fmt, const CpgVariant& variant = {});
 
 // Mode encoding on the unit's mode input and in the RTL package.

@@ -68,9 +68,8 @@ const std::array<ParamSpec, 18> kParams{{
     {"cpg_digit_bits", "--cpg-digit-bits", "", "CpgDigitBits", "r", H, I, 1, kMaxCpgDigitBits, {}, "bits",
      "quotient / root bits the dedicated CPG's dividers and square root retire per cycle (radix 2^r)",
      TESSIM_PARAM_FIELD(cpg.digit_bits)},
-    // No RTL parameter yet: the RTL's CPG is plain PN, so no RTL build matches cpg_tags 1.
-    {"cpg_tags", "--cpg-tags", "", nullptr, "", H, I, 0, 1, {}, "",
-     "1: the CPG takes scalar tags and computes scalar-tagged PN control points (cycle model only); 0: plain PN",
+    {"cpg_tags", "--cpg-tags", "", "CpgTags", "", H, I, 0, 1, {}, "",
+     "1: the CPG takes scalar tags and computes scalar-tagged PN control points; 0: plain PN",
      TESSIM_PARAM_FIELD(cpg_tags)},
     {"cpg_gpe_cycles", "--cpg-gpe-cycles", "", nullptr, "", E, I, 1, kMaxCycles, {}, "cycles",
      "geometry-engine cycles the CPG needs per triangle when mapped there (cpg_mapping gpe)",

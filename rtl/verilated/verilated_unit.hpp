@@ -222,6 +222,15 @@ class VerilatedUnit final : public RtlUnit {
         detail::put_bits(model_->tri_n_i, (3 * v + c) * w, w, static_cast<std::uint64_t>(in.tri.n[v][c]));
       }
     }
+    // Scalar tags (read by CpgTags builds only): vertex v's Δ, σ, θ, β at [6vW +: 6W].
+    for (int v = 0; v < 3; ++v) {
+      const sim::TagsFx& t = in.tri.tags[v];
+      for (int c = 0; c < 3; ++c)
+        detail::put_bits(model_->tri_tags_i, (6 * v + c) * w, w, static_cast<std::uint64_t>(t.delta[c]));
+      detail::put_bits(model_->tri_tags_i, (6 * v + 3) * w, w, static_cast<std::uint64_t>(t.sigma));
+      detail::put_bits(model_->tri_tags_i, (6 * v + 4) * w, w, static_cast<std::uint64_t>(t.theta));
+      detail::put_bits(model_->tri_tags_i, (6 * v + 5) * w, w, static_cast<std::uint64_t>(t.beta));
+    }
     model_->tri_l_i = static_cast<CData>(in.tri.L & 0x7f);
     model_->tri_id_i = in.tri.id;
     model_->vtx_ready_i = in.vtx_ready ? 1 : 0;

@@ -179,22 +179,27 @@ TEST(CosimInjectedBug, DroppedStallIsCaught) {
   expect_pass(run_cosim(stream, o), o);
 }
 
-// The build away from the defaults (N = 3, INT latency 3, V = 6) on random triangles under each
-// kind of backpressure and in every normal mode: the pipeline registers of the INT blocks and
-// results arriving Λ cycles after issue are covered by the default test matrix.
+// The build away from the defaults (N = 3, INT latency 3, V = 6, a CPG that takes scalar tags)
+// on random triangles, plain and tagged, under each kind of backpressure and in every normal
+// mode: the pipeline registers of the INT blocks and results arriving Λ cycles after issue are
+// covered by the default test matrix.
 TEST(CosimLatency3, AgreesInEveryModeAndUnderBackpressure) {
   for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
     for (const Backpressure bp : {Backpressure{"none", 0.0, 1}, Backpressure{"random", 0.3, 2}}) {
-      CosimOptions o = options(3, bp.stall, bp.gpe_cycles, 41);
-      o.variant = "n3_lat3";
-      o.unit.int_latency = 3;
-      o.unit.te_contexts = 6;
-      o.unit.cpg = {3, 5};
-      o.unit.normals = mode;
-      const auto stream = random_triangles(24, o.seed, o.unit.format, 6);
-      const CosimReport r = run_cosim(stream, o);
-      expect_pass(r, o);
-      EXPECT_EQ(r.vertices, expected_vertices(stream));
+      for (const bool tagged : {false, true}) {
+        CosimOptions o = options(3, bp.stall, bp.gpe_cycles, 41);
+        o.variant = "n3_lat3";
+        o.unit.int_latency = 3;
+        o.unit.te_contexts = 6;
+        o.unit.cpg = {3, 5};
+        o.unit.cpg_tags = 1;
+        o.unit.normals = mode;
+        const auto stream = random_triangles(24, o.seed, o.unit.format, 6, 0.1, 1.0, tagged);
+        const CosimReport r = run_cosim(stream, o);
+        SCOPED_TRACE(std::string(to_string(mode)) + " " + bp.name + (tagged ? " tagged" : " plain"));
+        expect_pass(r, o);
+        EXPECT_EQ(r.vertices, expected_vertices(stream));
+      }
     }
   }
 }
@@ -244,6 +249,7 @@ TEST(CosimWave, ExplicitWindowOfAPassingRunWithAMatchingLayout) {
     o.unit.int_latency = b.latency;
     o.unit.te_contexts = b.contexts;
     o.unit.cpg = b.cpg;
+    o.unit.cpg_tags = b.n == 3 ? 1 : 0;
     const auto stream = random_triangles(6, 7, o.unit.format, 3);
     for (const char* ext : {".fst", ".vcd"}) {
       o.wave = dir.path() / (std::string(b.name) + ext);
@@ -297,8 +303,9 @@ TEST(CosimWave, BadWaveOptionsAreInputErrorsBeforeTheRun) {
 
 // The CPG variants (docs/microarchitecture.md §5): one lane with radix-16 steps (N = 1), three
 // lanes with radix-256 steps (N = 2) and with a whole quotient a cycle (N = 4), in every mode,
-// with and without random stalls, in range and saturating. n3_lat3 (three lanes, steps that do
-// not divide W) is covered above. The values must not change and the timing must agree.
+// with and without random stalls, in range and saturating, on plain and on scalar-tagged streams
+// (these builds take tags). n3_lat3 (three lanes, steps that do not divide W) is covered above.
+// The values must not change and the timing must agree.
 TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
   struct Build {
     const char* name;
@@ -308,23 +315,31 @@ TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
   for (const Build b : {Build{"n1_r4", 1, {1, 4}}, Build{"n2_l3r8", 2, {3, 8}}, Build{"n4_l3r24", 4, {3, 24}}}) {
     for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
       for (const Backpressure bp : {Backpressure{"none", 0.0, 1}, Backpressure{"random", 0.3, 2}}) {
-        CosimOptions o = options(b.n, bp.stall, bp.gpe_cycles, 61);
+        for (const bool tagged : {false, true}) {
+          CosimOptions o = options(b.n, bp.stall, bp.gpe_cycles, 61);
+          o.variant = b.name;
+          o.unit.cpg = b.cpg;
+          o.unit.cpg_tags = 1;
+          o.unit.normals = mode;
+          const auto stream = random_triangles(24, o.seed, o.unit.format, 6, 0.1, 1.0, tagged);
+          const CosimReport r = run_cosim(stream, o);
+          SCOPED_TRACE(std::string(b.name) + " " + std::string(to_string(mode)) + " " + bp.name +
+                       (tagged ? " tagged" : " plain"));
+          expect_pass(r, o);
+          EXPECT_EQ(r.vertices, expected_vertices(stream));
+          if (tagged) EXPECT_GT(r.model_counters.cpg_busy, 24u * sim::cpg_cycles(mode, o.unit.format, b.cpg));
+        }
+      }
+      for (const bool tagged : {false, true}) {
+        CosimOptions o = options(b.n, 0.0, 1, 5);
         o.variant = b.name;
         o.unit.cpg = b.cpg;
+        o.unit.cpg_tags = 1;
         o.unit.normals = mode;
-        const auto stream = random_triangles(24, o.seed, o.unit.format, 6);
-        const CosimReport r = run_cosim(stream, o);
-        SCOPED_TRACE(std::string(b.name) + " " + std::string(to_string(mode)) + " " + bp.name);
+        const CosimReport r = run_cosim(random_triangles(60, o.seed, o.unit.format, 3, 0.1, 30.0, tagged), o);
         expect_pass(r, o);
-        EXPECT_EQ(r.vertices, expected_vertices(stream));
+        EXPECT_GT(r.reference.saturated, 0u) << b.name << " " << to_string(mode);
       }
-      CosimOptions o = options(b.n, 0.0, 1, 5);
-      o.variant = b.name;
-      o.unit.cpg = b.cpg;
-      o.unit.normals = mode;
-      const CosimReport r = run_cosim(random_triangles(60, o.seed, o.unit.format, 3, 0.1, 30.0), o);
-      expect_pass(r, o);
-      EXPECT_GT(r.reference.saturated, 0u) << b.name << " " << to_string(mode);
     }
   }
 }

@@ -196,14 +196,14 @@ TEST(StpnCycleModel, TagCyclesFollowTheSchedule) {
   const NumberFormat f{};  // W = 24: D = 24 at r = 1, 6 at r = 4
   EXPECT_EQ(cpg_tag_cycles(tri, f), 0);  // neutral: plain PN, no extra cycle
   tri.tags[0].delta = {1, 0, 0};
-  // face normal 2 + side 1 + three normalizations of 2 + 2D + two tangents of 2 cycles
-  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 1}), 2 + 1 + 3 * (2 + 48) + 2 * 2);
-  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 4}), 2 + 1 + 3 * (2 + 12) + 2 * 2);
-  EXPECT_EQ(cpg_tag_cycles(tri, f, {3, 1}), 2 + 1 + 3 * (2 + 48) + 2);  // one corner, one tangent per lane
+  // face normal 2 + side 1 + three normalizations of 2 + 2D + two tangent points of 4 cycles
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 1}), 2 + 1 + 3 * (2 + 48) + 2 * 4);
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 4}), 2 + 1 + 3 * (2 + 12) + 2 * 4);
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {3, 1}), 2 + 1 + 3 * (2 + 48) + 4);  // one corner, one tangent per lane
   tri.tags[1].delta = {0, 1, 0};
   tri.tags[2].theta = 5;  // θ only: X alone
-  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 1}), 2 + 2 * (1 + 3 * 50) + 50 + 6 * 2);
-  EXPECT_EQ(cpg_tag_cycles(tri, f, {3, 1}), 2 + (1 + 3 * 50) + 2 * 2);
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {1, 1}), 2 + 2 * (1 + 3 * 50) + 50 + 6 * 4);
+  EXPECT_EQ(cpg_tag_cycles(tri, f, {3, 1}), 2 + (1 + 3 * 50) + 2 * 4);
 }
 
 struct TaggedRun {
