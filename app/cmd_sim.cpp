@@ -1,10 +1,17 @@
 // tessim sim: a whole mesh through the cycle model of the unit and its geometry engine;
 // statistics, a human summary, a Perfetto trace, the issue schedule, the tessellated mesh.
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
+#include <unistd.h>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -15,6 +22,7 @@
 #include "model/weld.hpp"
 #include "app/commands.hpp"
 #include "app/config_flags.hpp"
+#include "sim/chunked.hpp"
 #include "sim/config.hpp"
 #include "sim/simulate.hpp"
 #include "sim/trace.hpp"
@@ -36,11 +44,81 @@ struct SimArgs {
   bool schedule = false;
   bool errors = false;
   bool no_fast_forward = false;
+  std::string chunks = "1";  // K, or auto
   AdaptiveOptions adaptive;
 };
 
+// The patches of a chunk after the first, kept in a temporary file until the chunks before it
+// are written: the output stays streamed in stream order with constant memory, whatever the
+// chunks' sizes. The file is removed however the command ends (AtomicOutput, never committed).
+class PatchSpool {
+ public:
+  explicit PatchSpool(const std::filesystem::path& near) : file_(near, true) {}
+
+  void add(const sim::PatchOut& p) {
+    const auto L = static_cast<std::int32_t>(p.L);
+    const auto n = static_cast<std::uint32_t>(p.positions.size());
+    append(&L, sizeof L);
+    append(&n, sizeof n);
+    append(p.positions.data(), p.positions.size_bytes());
+    append(p.normals.data(), p.normals.size_bytes());
+    if (buffer_.size() >= kBlock) flush();
+  }
+
+  // Every patch in the order added, as sim::PatchOut (triangle left 0).
+  void replay(const std::function<void(const sim::PatchOut&)>& emit) {
+    flush();
+    file_.stream().flush();
+    if (!file_.stream()) throw InputError(file_.temp_path().string(), "output", "write failed");
+    std::ifstream in(file_.temp_path(), std::ios::binary);
+    std::vector<glm::dvec3> pos, nrm;
+    std::int32_t L = 0;
+    std::uint32_t n = 0;
+    while (in.read(reinterpret_cast<char*>(&L), sizeof L)) {
+      if (!in.read(reinterpret_cast<char*>(&n), sizeof n)) break;
+      pos.resize(n);
+      nrm.resize(n);
+      if (!in.read(reinterpret_cast<char*>(pos.data()), static_cast<std::streamsize>(n * sizeof(glm::dvec3))) ||
+          !in.read(reinterpret_cast<char*>(nrm.data()), static_cast<std::streamsize>(n * sizeof(glm::dvec3))))
+        break;
+      emit(sim::PatchOut{0, L, pos, nrm});
+    }
+    if (!in.eof() || in.gcount() != 0) throw InputError(file_.temp_path().string(), "output", "read back failed");
+  }
+
+ private:
+  static constexpr std::size_t kBlock = std::size_t{1} << 20;
+  void append(const void* data, std::size_t size) { buffer_.append(static_cast<const char*>(data), size); }
+  void flush() {
+    file_.stream().write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    buffer_.clear();
+    if (!file_.stream()) throw InputError(file_.temp_path().string(), "output", "write failed");
+  }
+
+  AtomicOutput file_;
+  std::string buffer_;
+};
+
+// --chunks: a count, or 0 for auto (resolved once the mesh's triangles are known).
+int parse_chunks(const std::string& text) {
+  if (text == "auto") return 0;
+  int k = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), k);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || k < 1 || k > sim::kMaxChunks)
+    throw InputError("command line", "--chunks",
+                     "'" + text + "' is not a number of chunks (1.." + std::to_string(sim::kMaxChunks) + ") or auto");
+  return k;
+}
+
 void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   const sim::UnitConfig cfg = flags.config();
+  int chunks = parse_chunks(a.chunks);
+  // A trace and the schedule watch one unit cycle by cycle: there is no one unit to watch.
+  if (chunks != 1 && !a.trace.empty())
+    throw InputError("command line", "--chunks", "cannot be combined with --trace (a trace follows one unit cycle by cycle)");
+  if (chunks != 1 && a.schedule)
+    throw InputError("command line", "--chunks",
+                     "cannot be combined with --schedule (the schedule follows one unit cycle by cycle)");
   if (!a.output.empty() && !is_supported_output(a.output))
     throw InputError(a.output, "output", "unsupported extension (use .ply or .obj)");
   if (a.trace_cycles == 0) throw InputError("command line", "--trace-cycles", "must be at least 1");
@@ -64,6 +142,14 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   const Mesh mesh = load_mesh(a.mesh);
   if (!cfg.cpg_tags) warn_tags_ignored(mesh, "sim");
   const std::vector<std::uint8_t> factors = adaptive ? uniform_factors_covering(*adaptive, mesh) : std::vector<std::uint8_t>{};
+  const std::uint64_t triangles = mesh.triangle_count();
+  if (chunks == 0)
+    chunks = static_cast<int>(std::min<std::uint64_t>({std::max(1u, std::thread::hardware_concurrency()),
+                                                       static_cast<std::uint64_t>(sim::kMaxChunks),
+                                                       std::max<std::uint64_t>(triangles, 1)}));
+  if (static_cast<std::uint64_t>(chunks) > std::max<std::uint64_t>(triangles, 1))
+    throw InputError("command line", "--chunks",
+                     std::to_string(chunks) + " chunks of a mesh of " + std::to_string(triangles) + " triangles");
   std::uint64_t out_vertices = 0, out_triangles = 0;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
     const int L = factors.empty() ? cfg.tess_factor : factors[t];
@@ -83,10 +169,11 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   std::vector<WeldKey> keys;
   std::vector<std::uint32_t> indices;
   int indices_L = 0;
+  std::function<void(const sim::PatchOut&)> emit;  // a patch into the output, in stream order
   if (!a.output.empty() && a.weld) {
     // Shared vertices once: the unit computes them bit for bit alike in both patches of an edge.
     welder = std::make_unique<WeldingWriter>();
-    hooks.on_patch = [&](const sim::PatchOut& p) {
+    emit = [&](const sim::PatchOut& p) {
       keys.clear();
       for (std::size_t i = 0; i < p.positions.size(); ++i) keys.push_back(bits_key(p.positions[i], p.normals[i]));
       if (p.L != indices_L) {
@@ -98,10 +185,9 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     };
   } else if (!a.output.empty()) {
     writer = std::make_unique<MeshWriter>(a.output, out_vertices, out_triangles);
-    hooks.on_patch = [&](const sim::PatchOut& p) {
-      writer->add_patch(p.L, p.positions.data(), p.normals.data());
-    };
+    emit = [&](const sim::PatchOut& p) { writer->add_patch(p.L, p.positions.data(), p.normals.data()); };
   }
+  hooks.on_patch = emit;
   std::unique_ptr<sim::TraceWriter> trace;
   if (!a.trace.empty()) {
     trace = std::make_unique<sim::TraceWriter>(a.trace, cfg.int_blocks, cfg.te_contexts, trace_window);
@@ -113,7 +199,40 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     hooks.observers.push_back(schedule.get());
   }
 
-  const sim::SimResult result = sim::simulate(mesh, cfg, hooks, factors);
+  sim::SimResult result;
+  if (chunks == 1) {
+    result = sim::simulate(mesh, cfg, hooks, factors);
+  } else {
+    // The first chunk writes the output as it runs; each later one into a spool, copied into the
+    // output once the chunks before it are written.
+    std::vector<std::unique_ptr<PatchSpool>> spools(static_cast<std::size_t>(chunks));
+    if (emit) {
+      const std::filesystem::path near =
+          a.output == "-" ? std::filesystem::temp_directory_path() / ("tessim-sim-" + std::to_string(::getpid()))
+                          : std::filesystem::path(a.output);
+      for (int k = 1; k < chunks; ++k) {
+        std::filesystem::path spool = near;
+        spool += ".chunk" + std::to_string(k);
+        spools[static_cast<std::size_t>(k)] = std::make_unique<PatchSpool>(spool);
+      }
+    }
+    sim::ChunkCallbacks callbacks;
+    callbacks.hooks = [&](int k) {
+      sim::SimHooks h = hooks;
+      if (k > 0 && emit) {
+        PatchSpool* spool = spools[static_cast<std::size_t>(k)].get();
+        h.on_patch = [spool](const sim::PatchOut& p) { spool->add(p); };
+      }
+      return h;
+    };
+    callbacks.done = [&](int k) {
+      if (k == 0 || !emit) return;
+      auto& spool = spools[static_cast<std::size_t>(k)];
+      spool->replay(emit);
+      spool.reset();
+    };
+    result = sim::simulate_chunked(mesh, cfg, chunks, callbacks, factors);
+  }
 
   // All outputs are complete in memory or in temporaries: move them into place (the small
   // statistics are written out first, so that the renames are all that is left to fail).
@@ -166,6 +285,12 @@ void register_sim(CLI::App& app) {
   sub->add_flag("--errors", args->errors,
                 "compare every vertex with the float reference: end to end against the mesh, and the "
                 "arithmetic alone against its derived bound (summary and --stats \"errors\")");
+  sub->add_option("--chunks", args->chunks,
+                  "K: cut the triangle stream into K chunks (1.." + std::to_string(sim::kMaxChunks) +
+                      ", or auto: one per hardware thread) simulated in parallel, each on a unit fresh from "
+                      "reset; the same output, statistics summed, cycles within a bound of one run's "
+                      "(docs/statistics.md, Chunked runs)")
+      ->capture_default_str();
   sub->add_flag("--no-fast-forward", args->no_fast_forward,
                 "clock every cycle one by one instead of taking the cycles in which nothing moves at once "
                 "(same results, slower; docs/microarchitecture.md §11)");

@@ -12,6 +12,7 @@
 
 #include "model/pattern.hpp"
 #include "sim/analytic.hpp"
+#include "sim/chunked.hpp"
 #include "sim/testbench.hpp"
 #include "sim/version.hpp"
 
@@ -55,13 +56,13 @@ Timeline::Bucket run_totals(const Unit& unit, const Gpe& gpe) {
   return t;
 }
 
-WorkloadFactors workload_factors(const MeshSource& source, std::uint64_t triangles) {
+WorkloadFactors workload_factors(const MeshSource& source) {
   WorkloadFactors w;
-  for (std::uint64_t t = 0; t < triangles; ++t) {
+  for (std::uint64_t t = source.first(); t < source.end(); ++t) {
     const int L = source.factor(t);
     ++w.patches_with_factor[static_cast<std::size_t>(L)];
     w.vertices += static_cast<std::uint64_t>(pattern_vertex_count(L));
-    if (L != source.factor(0)) w.uniform = false;
+    if (L != source.factor(source.first())) w.uniform = false;
   }
   return w;
 }
@@ -70,24 +71,32 @@ WorkloadFactors workload_factors(const MeshSource& source, std::uint64_t triangl
 
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks,
                    std::span<const std::uint8_t> factors) {
+  return simulate_range(mesh, cfg, 0, mesh.triangle_count(), hooks, factors);
+}
+
+SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
+                         const SimHooks& hooks, std::span<const std::uint8_t> factors) {
   if (!factors.empty() && factors.size() != mesh.triangle_count())
     throw std::logic_error("simulate: " + std::to_string(factors.size()) + " factors for " +
                            std::to_string(mesh.triangle_count()) + " triangles");
+  if (first > end || end > mesh.triangle_count())
+    throw std::logic_error("simulate: triangles " + std::to_string(first) + ".." + std::to_string(end) +
+                           " of a mesh of " + std::to_string(mesh.triangle_count()));
   const auto t0 = std::chrono::steady_clock::now();
   check_convertible(mesh);
   SimResult r;
   r.mesh = mesh.source;
   r.config = cfg;
-  r.triangles = mesh.triangle_count();
+  r.triangles = end - first;
   r.scaling = host_scaling(mesh);
 
   Unit unit(cfg);
-  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, factors, cfg.cpg_tags);
+  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, factors, cfg.cpg_tags, first, end);
   BasicTestbench<MeshSource> tb(source, cfg);
   r.cpg_cycles = unit.cpg_cycles();
-  r.factors = workload_factors(source, r.triangles);
+  r.factors = workload_factors(source);
   const NumberFormat& fmt = cfg.format;
-  int L = r.triangles ? source.factor(0) : cfg.tess_factor;  // of the patch expected next
+  int L = r.triangles ? source.factor(first) : cfg.tess_factor;  // of the patch expected next
   int patch_vertices = pattern_vertex_count(L);
   const std::uint64_t total = source.vertices();
   // A tagged triangle keeps the CPG longer: the watchdog allows for three tagged corners.
@@ -112,7 +121,7 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
 
   // Expected next vertex: the stream is checked as it goes (patch order, pattern order), so a
   // model bug shows up as an internal error instead of a wrong mesh.
-  std::uint32_t expect_id = 0;
+  auto expect_id = static_cast<std::uint32_t>(first);
   int expect_index = 0;
   std::uint64_t accepted = 0;
   std::uint64_t last_progress = 0;
@@ -176,9 +185,10 @@ SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hook
         }
       }
       if (v.last) {
+        if (hooks.cancel && hooks.cancel->load(std::memory_order_relaxed)) throw SimCancelled();
         ++expect_id;
         expect_index = 0;
-        if (expect_id < r.triangles) {
+        if (expect_id < end) {
           L = source.factor(expect_id);
           patch_vertices = pattern_vertex_count(L);
         }
@@ -402,6 +412,13 @@ nlohmann::json stats_units() {
   u["timeline.int_busy[]"] = "cycles summed over the INT blocks (= operations issued)";
   u["timeline.cpg_busy[]"] = kCycles;
   u["timeline.vertices_out[]"] = "vertices";
+  // A chunked run (sim/chunked.hpp): its chunks and how far a single run's cycles can be.
+  u["chunks.count"] = "chunks";
+  u["chunks.cycles[]"] = kCycles;
+  u["chunks.boundary_bound.longer"] = "cycles (per chunk boundary)";
+  u["chunks.boundary_bound.shorter"] = "cycles (per chunk boundary)";
+  u["chunks.single_run_cycles.min"] = kCycles;
+  u["chunks.single_run_cycles.max"] = kCycles;
   u["errors.arithmetic.beyond_bound"] = "vertices";
   u["errors.arithmetic.saturated_vertices"] = "vertices";
   u["errors.arithmetic.scalar_tagged_vertices"] = "vertices";
@@ -459,6 +476,16 @@ nlohmann::json stats_json(const SimResult& r) {
   if (r.errors) {
     j["errors"] = to_json(r.errors->mesh);
     j["errors"]["arithmetic"] = to_json(r.errors->arithmetic);
+  }
+  if (!r.chunk_cycles.empty()) {
+    const ChunkBoundaryBound b = chunk_boundary_bound(r.config, r.factors.uniform);
+    const std::uint64_t boundaries = r.chunk_cycles.size() - 1;
+    j["chunks"] = {{"count", r.chunk_cycles.size()},
+                   {"cycles", r.chunk_cycles},
+                   {"boundary_bound", {{"longer", b.longer}, {"shorter", b.shorter}}},
+                   {"single_run_cycles",
+                    {{"min", u.cycles - std::min(u.cycles, boundaries * b.longer)}, {"max", u.cycles + boundaries * b.shorter}}},
+                   {"bound", r.config.gpe_stall_prob > 0 ? "expected (random GPE stalls)" : "exact"}};
   }
   j["units"] = stats_units();
   return j;
@@ -540,6 +567,17 @@ std::string summary(const SimResult& r) {
                   a.stats.normal_angle_max, static_cast<unsigned long long>(a.beyond_bound));
     s << buf;
     if (a.beyond_bound) s << "         first beyond the bound: " << a.worst << "\n";
+  }
+  if (!r.chunk_cycles.empty()) {
+    const ChunkBoundaryBound b = chunk_boundary_bound(c, r.factors.uniform);
+    const std::uint64_t boundaries = r.chunk_cycles.size() - 1;
+    std::snprintf(buf, sizeof buf,
+                  "chunks   %zu chunks in parallel, each from reset: cycles are their sum; a single run: %llu..%llu "
+                  "cycles (%llu longer .. %llu shorter per boundary%s)\n",
+                  r.chunk_cycles.size(), static_cast<unsigned long long>(n - std::min(n, boundaries * b.longer)),
+                  static_cast<unsigned long long>(n + boundaries * b.shorter), static_cast<unsigned long long>(b.longer),
+                  static_cast<unsigned long long>(b.shorter), c.gpe_stall_prob > 0 ? ", on average: random stalls" : "");
+    s << buf;
   }
   if (r.degenerate_patches > 0 || r.zero_normals > 0)
     s << "warning  " << r.degenerate_patches << " patches hit a zero divisor (zero-length edge or "

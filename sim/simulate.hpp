@@ -4,7 +4,9 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <optional>
 #include <span>
@@ -49,6 +51,14 @@ struct SimHooks {
   // Take the cycles in which nothing moves at once (exact; docs/microarchitecture.md §11). Off
   // whenever an observer watches the run cycle by cycle.
   bool fast_forward = true;
+  // Set by another thread to stop the run at the next patch boundary (SimCancelled is thrown):
+  // the other chunks of a chunked run after one of them failed.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+// Thrown by a run stopped through SimHooks::cancel.
+struct SimCancelled : std::exception {
+  const char* what() const noexcept override { return "simulation cancelled"; }
 };
 
 // The unit's output against the float64 reference (sim/reference_check.hpp): end to end against
@@ -86,6 +96,8 @@ struct SimResult {
   std::optional<SimErrors> errors;       // with SimHooks::measure_errors
   WorkloadFactors factors;               // the factors of the run's patches
   Timeline timeline;                     // the classes over time, in buckets of cycles
+  // A chunked run (sim/chunked.hpp): the cycles of each chunk; empty for one run of the stream.
+  std::vector<std::uint64_t> chunk_cycles;
 };
 
 // Runs every triangle of `mesh` through the unit with a uniform factor cfg.tess_factor until
@@ -97,6 +109,11 @@ struct SimResult {
 // cfg.tess_factor for every triangle.
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks = {},
                    std::span<const std::uint8_t> factors = {});
+// The same for the triangles [first, end) of the mesh alone, on a unit fresh from reset (a chunk
+// of a chunked run): ids and factors stay those of the whole mesh, the scaling is the mesh's, so
+// every vertex is the one simulate() makes of that triangle. SimResult::triangles = end - first.
+SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
+                         const SimHooks& hooks = {}, std::span<const std::uint8_t> factors = {});
 
 // Figures derived from the statistics (docs/microarchitecture.md §10).
 double throughput(const SimResult& r);         // vertices per cycle

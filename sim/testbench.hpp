@@ -41,31 +41,37 @@ class VectorSource {
 };
 
 // The triangles of a mesh, scaled and quantized one at a time as they are offered (streaming:
-// nothing per triangle is held but its factor), all with factor L or each with its own.
+// nothing per triangle is held but its factor), all with factor L or each with its own. A range
+// [first, end) of the mesh's triangles streams only those (a chunk of a chunked run); their ids
+// stay their indices in the mesh.
 class MeshSource {
  public:
-  // `factors`: one per triangle (empty: L for every triangle); kept by reference.
+  // `factors`: one per triangle of the mesh (empty: L for every triangle); kept by reference.
   // `with_tags`: the mesh's scalar tags go along (a CPG that takes them, cpg_tags).
   MeshSource(const Mesh& mesh, const HostScaling& scaling, const NumberFormat& format, int L,
-             std::span<const std::uint8_t> factors = {}, bool with_tags = false)
-      : mesh_(mesh), scaling_(scaling), format_(format), L_(L), factors_(factors), with_tags_(with_tags) {
+             std::span<const std::uint8_t> factors = {}, bool with_tags = false, std::size_t first = 0,
+             std::size_t end = SIZE_MAX)
+      : mesh_(mesh), scaling_(scaling), format_(format), L_(L), factors_(factors), with_tags_(with_tags),
+        first_(first), end_(std::min(end, mesh.triangle_count())) {
     rewind();
   }
   int factor(std::size_t t) const { return factors_.empty() ? L_ : factors_[t]; }
+  std::size_t first() const { return first_; }
+  std::size_t end() const { return end_; }
   void rewind() {
-    next_ = 0;
-    if (available()) current_ = to_fixed(mesh_, 0, scaling_, format_, factor(0), with_tags_);
+    next_ = first_;
+    if (available()) current_ = to_fixed(mesh_, next_, scaling_, format_, factor(next_), with_tags_);
   }
-  bool available() const { return next_ < mesh_.triangle_count(); }
+  bool available() const { return next_ < end_; }
   const TriangleFx& front() const { return current_; }
   void pop() {
-    if (++next_ < mesh_.triangle_count())
-      current_ = to_fixed(mesh_, next_, scaling_, format_, factor(next_), with_tags_);
+    if (++next_ < end_) current_ = to_fixed(mesh_, next_, scaling_, format_, factor(next_), with_tags_);
   }
   std::uint64_t vertices() const {
-    if (factors_.empty()) return mesh_.triangle_count() * static_cast<std::uint64_t>(pattern_vertex_count(L_));
+    if (first_ >= end_) return 0;
+    if (factors_.empty()) return (end_ - first_) * static_cast<std::uint64_t>(pattern_vertex_count(L_));
     std::uint64_t n = 0;
-    for (std::uint8_t L : factors_) n += static_cast<std::uint64_t>(pattern_vertex_count(L));
+    for (std::size_t t = first_; t < end_; ++t) n += static_cast<std::uint64_t>(pattern_vertex_count(factors_[t]));
     return n;
   }
 
@@ -76,6 +82,7 @@ class MeshSource {
   int L_;
   std::span<const std::uint8_t> factors_;
   bool with_tags_ = false;
+  std::size_t first_ = 0, end_ = 0;
   std::size_t next_ = 0;
   TriangleFx current_;
 };

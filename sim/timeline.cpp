@@ -1,5 +1,6 @@
 #include "sim/timeline.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -69,6 +70,44 @@ void Timeline::finish(const Bucket& totals, std::uint64_t cycles) {
   if (cycles == begin) return;  // the run ended on a boundary
   store(totals);
   last_ = cycles - begin;
+}
+
+Timeline Timeline::concatenate(std::span<const Timeline> parts) {
+  std::uint64_t width = 1;
+  for (const Timeline& t : parts) width = std::max(width, t.width_);
+  std::vector<Bucket> buckets;
+  std::vector<std::uint64_t> cycles;
+  for (const Timeline& t : parts) {
+    const std::uint64_t group = width / t.width_;  // both powers of two
+    for (std::size_t i = 0; i < t.count_; ++i) {
+      if (i % group == 0) {
+        buckets.emplace_back();
+        cycles.push_back(0);
+      }
+      buckets.back() = plus(buckets.back(), t.buckets_[i]);
+      cycles.back() += t.cycles(i);
+    }
+  }
+  while (buckets.size() > kBuckets) {
+    const std::size_t n = (buckets.size() + 1) / 2;
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool pair = 2 * i + 1 < buckets.size();
+      buckets[i] = pair ? plus(buckets[2 * i], buckets[2 * i + 1]) : buckets[2 * i];
+      cycles[i] = pair ? cycles[2 * i] + cycles[2 * i + 1] : cycles[2 * i];
+    }
+    buckets.resize(n);
+    cycles.resize(n);
+    width *= 2;
+  }
+  Timeline r;
+  std::copy(buckets.begin(), buckets.end(), r.buckets_.begin());
+  r.count_ = buckets.size();
+  r.width_ = width;
+  r.cycles_ = std::move(cycles);
+  std::uint64_t total = 0;
+  for (std::uint64_t c : r.cycles_) total += c;
+  r.end_ = total;  // finished: nothing more is closed
+  return r;
 }
 
 nlohmann::json to_json(const Timeline& t) {

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -49,10 +50,20 @@ class Timeline {
   // The run ended after `cycles` cycles with `totals`: the last bucket, when not empty.
   void finish(const Bucket& totals, std::uint64_t cycles);
 
+  // Timelines of consecutive runs (the chunks of a chunked run, sim/chunked.hpp) as one, exact:
+  // each re-bucketed to the widest width among them (a run's buckets start at its cycle 0, so
+  // whole groups merge), appended in order, and neighbouring pairs merged, the width doubling,
+  // while there are more than kBuckets. Every run's last bucket may be partial, so any bucket
+  // may hold fewer than bucket_cycles() cycles (cycles(i) says how many).
+  static Timeline concatenate(std::span<const Timeline> parts);
+
   std::uint64_t bucket_cycles() const { return width_; }  // width of every bucket but the last
   std::size_t size() const { return count_; }              // buckets (after finish())
   const Bucket& bucket(std::size_t i) const { return buckets_[i]; }
-  std::uint64_t cycles(std::size_t i) const { return i + 1 == count_ && last_ > 0 ? last_ : width_; }
+  std::uint64_t cycles(std::size_t i) const {
+    if (!cycles_.empty()) return cycles_[i];
+    return i + 1 == count_ && last_ > 0 ? last_ : width_;
+  }
 
  private:
   void store(const Bucket& totals);  // the bucket from start_ to `totals`
@@ -63,6 +74,7 @@ class Timeline {
   std::uint64_t end_ = 1;        // cycle count at which the current bucket ends
   std::uint64_t last_ = 0;       // cycles of a partial last bucket (after finish())
   Bucket start_;                 // totals at the start of the current bucket
+  std::vector<std::uint64_t> cycles_;  // a concatenation's cycles per bucket (else empty)
 };
 
 // The "timeline" object of the statistics JSON.

@@ -42,9 +42,9 @@ TEST(StatsJson, EveryNumberHasAUnitAndEveryUnitANumber) {
   testing::TempDir dir;
   const auto plain = dir.path() / "plain.json", rich = dir.path() / "rich.json";
   ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "3", "--stats", plain.string()}, dir.path()).status, 0);
-  // --errors and adaptive factors add the error and varying-workload figures.
+  // --errors, adaptive factors and chunks add the error, varying-workload and chunk figures.
   const auto r = testing::run_tessim({"sim", kMesh, "--errors", "--adaptive", "screen", "--camera",
-                                      "eye=1.5,1.5,5,target=1.5,1.5,1.5", "--stats", rich.string()},
+                                      "eye=1.5,1.5,5,target=1.5,1.5,1.5", "--chunks", "2", "--stats", rich.string()},
                                      dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   const json units = sim::stats_units();

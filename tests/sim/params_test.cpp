@@ -255,7 +255,8 @@ TEST(Schema, BinaryPrintsValidJsonListingEveryParameter) {
   EXPECT_EQ(s["rtl_parameters"]["IntBlocks"], "int_blocks");
   EXPECT_EQ(s["rtl_parameters"]["Contexts"], "te_contexts");
   EXPECT_EQ(s["rtl_parameters"]["CpgDigitBits"], "cpg_digit_bits");
-  EXPECT_EQ(s["rtl_parameters"].size(), 10u);
+  EXPECT_EQ(s["rtl_parameters"]["CpgTags"], "cpg_tags");
+  EXPECT_EQ(s["rtl_parameters"].size(), 11u);
 }
 
 // A Verilated variant gives only the parameters that differ from tess_pkg's defaults
@@ -273,7 +274,7 @@ TEST(Schema, RtlPackageDefaultsAreTheConfigDefaults) {
     EXPECT_EQ(json(std::stoi(m[1].str())), p.get(UnitConfig{})) << p.rtl;
     ++checked;
   }
-  EXPECT_EQ(checked, 10);
+  EXPECT_EQ(checked, 11);
 }
 
 TEST(Schema, IntOpsAndStatistics) {
