@@ -327,7 +327,9 @@ TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
                        (tagged ? " tagged" : " plain"));
           expect_pass(r, o);
           EXPECT_EQ(r.vertices, expected_vertices(stream));
-          if (tagged) EXPECT_GT(r.model_counters.cpg_busy, 24u * sim::cpg_cycles(mode, o.unit.format, b.cpg));
+          if (tagged) {
+            EXPECT_GT(r.model_counters.cpg_busy, 24u * sim::cpg_cycles(mode, o.unit.format, b.cpg));
+          }
         }
       }
       for (const bool tagged : {false, true}) {

@@ -65,7 +65,7 @@ TEST(CosimStpn, TaggedRealMeshesAgreeForEveryBuildAndMode) {
         const auto stream = tagged_stream(path, o.unit.format, 2, &tagged);
         ASSERT_GT(tagged, 0u) << path << ": the ST-mesh must have tagged triangles";
         const CosimReport r = run_cosim(stream, o);
-        SCOPED_TRACE(std::string(path) + " " + b.name + " " + to_string(mode));
+        SCOPED_TRACE(std::string(path) + " " + b.name + " " + std::string(to_string(mode)));
         EXPECT_TRUE(r.passed) << format_report(r, o);
         EXPECT_TRUE(r.counters_match);
         EXPECT_GT(r.reference.scalar_tagged, 0u) << "tagged vertices reach the reference check";
