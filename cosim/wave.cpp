@@ -84,7 +84,12 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   const int B = hw.format.bary_bits;
   const int V = hw.te_contexts;
   // Widths of the RTL's registers for this configuration (rtl/tess_cpg.sv, tess_te.sv, tess_fifo.sv).
-  const int cpg_counter = clog2(static_cast<std::uint64_t>(sim::cpg_cycles(NormalMode::Quadratic, hw.format, hw.cpg)));
+  // The CPG's counter holds C plus, with scalar tags, the longest tag pass (three tagged corners).
+  sim::TriangleFx all_tagged;
+  for (sim::TagsFx& t : all_tagged.tags) t.delta[0] = 1;
+  const int tag_max = hw.cpg_tags ? sim::cpg_tag_cycles(all_tagged, hw.format, hw.cpg) : 0;
+  const int cpg_counter =
+      clog2(static_cast<std::uint64_t>(sim::cpg_cycles(NormalMode::Quadratic, hw.format, hw.cpg) + tag_max));
   const int cpg_step = clog2(static_cast<std::uint64_t>(sim::cpg_edge_cycles(NormalMode::Quadratic, hw.format, hw.cpg.digit_bits)));
   const int te_count = clog2(static_cast<std::uint64_t>(V) + 1);
   const int te_index = V > 1 ? clog2(static_cast<std::uint64_t>(V)) : 1;
