@@ -27,6 +27,7 @@ PACKAGES=(
   gtkwave                       # tessim cosim --wave: FST to VCD (fst2vcd), viewing the dumps with their .gtkw layout
   chromium                      # tessim report: the HTML run report checked in a headless browser
   pybind11-dev python3-dev      # the Python module (python/), numpy arrays out of the model and the cycle model
+  python3-setuptools            # its configure: CMake's FindPython3 probes the interpreter through distutils
 )
 
 missing=()
