@@ -38,7 +38,7 @@ struct CosimArgs {
   bool verif = false;
   std::string wave;
   std::string wave_window = "200";  // N cycles before a divergence, or START:END
-  AdaptiveOptions adaptive;
+  UnitPatternOptions pattern;
   std::string coverage;                 // functional coverage file (accumulated)
   std::vector<std::uint64_t> reset_at;  // cycles of a mid-stream reset
 };
@@ -110,27 +110,57 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   }
   const sim::UnitConfig cfg = flags.config();  // defaults, --config, the flags given
   const std::string variant = choose_variant(a, flags, cfg);
-  const std::optional<TessSettings> adaptive = adaptive_workload(a.adaptive, "cosim");
-  if (adaptive && a.random_count > 0) throw InputError("command line", "--adaptive", "needs a mesh, not --random");
+  // --random draws the factors of a D3D11 pattern: --partitioning P, or mixed (one per triangle).
+  const bool mixed = a.pattern.partitioning == "mixed";
+  UnitPatternOptions pattern_options = a.pattern;
+  if (mixed) {
+    if (a.random_count == 0) throw InputError("command line", "--partitioning", "'mixed' needs --random");
+    pattern_options.partitioning = "integer";
+  }
+  const std::optional<TessSettings> pattern = pattern_options.settings("cosim", cfg.tess_factor);
+  if (pattern && a.random_count > 0 && (pattern->source == FactorSource::Adaptive || !a.pattern.outer.empty()))
+    throw InputError("command line", a.pattern.outer.empty() ? "--adaptive" : "--outer",
+                     "needs a mesh; --random draws the factors (with --partitioning)");
+  if (pattern && cfg.format.bary_bits < 16)
+    throw InputError(flags.config_file().empty() ? "command line" : flags.config_file(), "bary_bits",
+                     "the D3D11 pattern's points are 16.16: it needs bary_bits >= 16, not " +
+                         std::to_string(cfg.format.bary_bits));
 
   std::vector<sim::TriangleFx> stream;
   std::string source;
+  std::optional<Partitioning> random_partitioning;
+  if (pattern && !mixed) random_partitioning = pattern->partitioning;
   if (a.random_count > 0) {
     if (!(a.random_extent > 0 && a.random_extent <= 1000))
       throw InputError("command line", "--random-extent", std::to_string(a.random_extent) + " is outside (0, 1000]");
     if (a.random_max_L < 1 || a.random_max_L > kMaxTessFactor)
       throw InputError("command line", "--random-max-L", std::to_string(a.random_max_L) + " is outside 1..64");
     source = std::to_string(a.random_count) + " random triangles";
+    if (pattern)
+      source += std::string(", D3D11 pattern with random factors up to ") + std::to_string(a.random_max_L) + ", " +
+                (mixed ? "mixed partitionings" : partitioning_name(pattern->partitioning));
   } else {
     const Mesh mesh = load_mesh(a.mesh);
     if (!cfg.cpg_tags) warn_tags_ignored(mesh, "cosim");
     const sim::HostScaling scaling = sim::host_scaling(mesh);
-    const std::vector<std::uint8_t> factors = adaptive ? uniform_factors_covering(*adaptive, mesh) : std::vector<std::uint8_t>{};
+    TessSettings settings;
+    settings.L = cfg.tess_factor;
+    if (pattern) settings = *pattern;
     stream.reserve(mesh.triangle_count());
-    for (std::size_t i = 0; i < mesh.triangle_count(); ++i)
-      stream.push_back(sim::to_fixed(mesh, i, scaling, cfg.format, factors.empty() ? cfg.tess_factor : factors[i],
-                                     cfg.cpg_tags != 0));
-    source = a.mesh + (adaptive ? " (" + adaptive->describe() + ", covered by the uniform pattern)" : "");
+    std::size_t culled = 0;
+    for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
+      std::optional<sim::TriangleFx> tri = sim::to_fixed(mesh, i, scaling, cfg.format, settings, cfg.cpg_tags != 0);
+      if (!tri) {
+        ++culled;
+        continue;
+      }
+      tri->id = static_cast<std::uint32_t>(stream.size());  // stream positions: a culled patch is not sent
+      stream.push_back(*tri);
+    }
+    if (stream.empty())
+      throw InputError("command line", "--outer", "the factors cull every patch (an outer factor <= 0 or NaN): nothing to run");
+    source = a.mesh + (pattern ? " (" + pattern->describe() + ")" : "");
+    if (culled) source += ", " + std::to_string(culled) + " culled patches not sent";
   }
 
   // Functional coverage accumulates into the file across seeds and invocations; it is read
@@ -162,9 +192,11 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   for (int s = 0; s < a.seeds; ++s) {
     opts.seed = cfg.seed + static_cast<std::uint64_t>(s);
     opts.unit.seed = opts.seed;
-    if (a.random_count > 0)
+    if (a.random_count > 0) {
       stream = cosim::random_triangles(a.random_count, opts.seed, cfg.format, a.random_max_L, 0.1, a.random_extent,
                                        cfg.cpg_tags != 0);
+      if (pattern) cosim::assign_random_patterns(stream, opts.seed, a.random_max_L, random_partitioning);
+    }
     std::cout << "stream: " << source << "\n";
     const cosim::CosimReport rep = cosim::run_cosim(stream, opts);
     std::cout << cosim::format_report(rep, opts) << std::flush;
@@ -211,7 +243,7 @@ void register_cosim(CLI::App& app) {
   cmd->add_option("--seeds", args->seeds, "Run this many consecutive seeds (1..1000000)")
       ->transform(number_check<int>("command line", "--seeds", "1..1000000"));
   cmd->add_option("--variant", args->variant, "RTL build to use (see docs/rtl.md)");
-  add_adaptive_options(*cmd, args->adaptive, "cosim");
+  add_unit_pattern_options(*cmd, args->pattern, "cosim");
   cmd->add_flag("--verif", args->verif, "Use the verification build (X randomised)");
   cmd->add_option("--coverage", args->coverage,
                   "Sample functional coverage into this JSON file, adding to what it holds (docs/verification.md, "

@@ -19,6 +19,7 @@
 #include "model/mesh_io.hpp"
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"
+#include "model/tessellate.hpp"
 #include "model/weld.hpp"
 #include "app/commands.hpp"
 #include "app/config_flags.hpp"
@@ -45,7 +46,7 @@ struct SimArgs {
   bool errors = false;
   bool no_fast_forward = false;
   std::string chunks = "1";  // K, or auto
-  AdaptiveOptions adaptive;
+  UnitPatternOptions pattern;
 };
 
 // The patches of a chunk after the first, kept in a temporary file until the chunks before it
@@ -58,10 +59,13 @@ class PatchSpool {
   void add(const sim::PatchOut& p) {
     const auto L = static_cast<std::int32_t>(p.L);
     const auto n = static_cast<std::uint32_t>(p.positions.size());
+    const auto m = static_cast<std::uint32_t>(p.indices.size());  // D3D11 patches: their triangles
     append(&L, sizeof L);
     append(&n, sizeof n);
+    append(&m, sizeof m);
     append(p.positions.data(), p.positions.size_bytes());
     append(p.normals.data(), p.normals.size_bytes());
+    append(p.indices.data(), p.indices.size_bytes());
     if (buffer_.size() >= kBlock) flush();
   }
 
@@ -72,16 +76,19 @@ class PatchSpool {
     if (!file_.stream()) throw InputError(file_.temp_path().string(), "output", "write failed");
     std::ifstream in(file_.temp_path(), std::ios::binary);
     std::vector<glm::dvec3> pos, nrm;
+    std::vector<std::uint32_t> indices;
     std::int32_t L = 0;
-    std::uint32_t n = 0;
+    std::uint32_t n = 0, m = 0;
     while (in.read(reinterpret_cast<char*>(&L), sizeof L)) {
-      if (!in.read(reinterpret_cast<char*>(&n), sizeof n)) break;
+      if (!in.read(reinterpret_cast<char*>(&n), sizeof n) || !in.read(reinterpret_cast<char*>(&m), sizeof m)) break;
       pos.resize(n);
       nrm.resize(n);
+      indices.resize(m);
       if (!in.read(reinterpret_cast<char*>(pos.data()), static_cast<std::streamsize>(n * sizeof(glm::dvec3))) ||
-          !in.read(reinterpret_cast<char*>(nrm.data()), static_cast<std::streamsize>(n * sizeof(glm::dvec3))))
+          !in.read(reinterpret_cast<char*>(nrm.data()), static_cast<std::streamsize>(n * sizeof(glm::dvec3))) ||
+          !in.read(reinterpret_cast<char*>(indices.data()), static_cast<std::streamsize>(m * sizeof(std::uint32_t))))
         break;
-      emit(sim::PatchOut{0, L, pos, nrm});
+      emit(sim::PatchOut{0, L, pos, nrm, indices});
     }
     if (!in.eof() || in.gcount() != 0) throw InputError(file_.temp_path().string(), "output", "read back failed");
   }
@@ -137,11 +144,15 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     trace_window = {from, to + 1};
   }
   check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}});
-  const std::optional<TessSettings> adaptive = adaptive_workload(a.adaptive, "sim");
+  const std::optional<TessSettings> pattern = a.pattern.settings("sim", cfg.tess_factor);
+  if (pattern && cfg.format.bary_bits < 16)
+    throw InputError(flags.config_file().empty() ? "command line" : flags.config_file(), "bary_bits",
+                     "the D3D11 pattern's points are 16.16: it needs bary_bits >= 16, not " +
+                         std::to_string(cfg.format.bary_bits));
 
   const Mesh mesh = load_mesh(a.mesh);
   if (!cfg.cpg_tags) warn_tags_ignored(mesh, "sim");
-  const std::vector<std::uint8_t> factors = adaptive ? uniform_factors_covering(*adaptive, mesh) : std::vector<std::uint8_t>{};
+  const sim::MeshPatterns patterns(pattern ? &*pattern : nullptr);
   const std::uint64_t triangles = mesh.triangle_count();
   if (chunks == 0)
     chunks = static_cast<int>(std::min<std::uint64_t>({std::max(1u, std::thread::hardware_concurrency()),
@@ -151,10 +162,14 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     throw InputError("command line", "--chunks",
                      std::to_string(chunks) + " chunks of a mesh of " + std::to_string(triangles) + " triangles");
   std::uint64_t out_vertices = 0, out_triangles = 0;
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const int L = factors.empty() ? cfg.tess_factor : factors[t];
-    out_vertices += static_cast<std::uint64_t>(pattern_vertex_count(L));
-    out_triangles += static_cast<std::uint64_t>(pattern_triangle_count(L));
+  if (pattern) {
+    PatternCache cache(*pattern);
+    const TessellationCounts counts = count_tessellation(mesh, cache);
+    out_vertices = counts.vertices;
+    out_triangles = counts.triangles;
+  } else {
+    out_vertices = mesh.triangle_count() * static_cast<std::uint64_t>(pattern_vertex_count(cfg.tess_factor));
+    out_triangles = mesh.triangle_count() * static_cast<std::uint64_t>(pattern_triangle_count(cfg.tess_factor));
   }
 
   // Every output is opened (as a temporary beside its target) before the run, so that a path
@@ -176,6 +191,10 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     emit = [&](const sim::PatchOut& p) {
       keys.clear();
       for (std::size_t i = 0; i < p.positions.size(); ++i) keys.push_back(bits_key(p.positions[i], p.normals[i]));
+      if (p.L == 0) {  // a D3D11 patch brings its triangles
+        welder->add_patch(p.positions, p.normals, keys, p.indices);
+        return;
+      }
       if (p.L != indices_L) {
         indices_L = p.L;
         indices.clear();
@@ -185,7 +204,10 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     };
   } else if (!a.output.empty()) {
     writer = std::make_unique<MeshWriter>(a.output, out_vertices, out_triangles);
-    emit = [&](const sim::PatchOut& p) { writer->add_patch(p.L, p.positions.data(), p.normals.data()); };
+    emit = [&](const sim::PatchOut& p) {
+      if (p.L == 0) writer->add_patch(p.positions, p.normals, p.indices);
+      else writer->add_patch(p.L, p.positions.data(), p.normals.data());
+    };
   }
   hooks.on_patch = emit;
   std::unique_ptr<sim::TraceWriter> trace;
@@ -201,7 +223,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
 
   sim::SimResult result;
   if (chunks == 1) {
-    result = sim::simulate(mesh, cfg, hooks, factors);
+    result = sim::simulate(mesh, cfg, hooks, patterns);
   } else {
     // The first chunk writes the output as it runs; each later one into a spool, copied into the
     // output once the chunks before it are written.
@@ -231,7 +253,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
       spool->replay(emit);
       spool.reset();
     };
-    result = sim::simulate_chunked(mesh, cfg, chunks, callbacks, factors);
+    result = sim::simulate_chunked(mesh, cfg, chunks, callbacks, patterns);
   }
 
   // All outputs are complete in memory or in temporaries: move them into place (the small
@@ -281,7 +303,7 @@ void register_sim(CLI::App& app) {
                 "normals)")
       ->needs(output);
   sub->add_flag("--schedule", args->schedule, "print the issue pattern of the first vertices");
-  add_adaptive_options(*sub, args->adaptive, "sim");
+  add_unit_pattern_options(*sub, args->pattern, "sim");
   sub->add_flag("--errors", args->errors,
                 "compare every vertex with the float reference: end to end against the mesh, and the "
                 "arithmetic alone against its derived bound (summary and --stats \"errors\")");

@@ -62,10 +62,20 @@ struct PatternOptions {
 };
 void add_pattern_options(CLI::App& cmd, PatternOptions& options, const char* command);
 
-// The unit's adaptive workload (tessim sim, tessim cosim), checked before any mesh is read:
-// nothing without --adaptive. Per triangle, the unit then gets the factor of its uniform
-// pattern that covers the adaptive D3D11 factors (uniform_factors_covering, model/factors.hpp).
-std::optional<TessSettings> adaptive_workload(const AdaptiveOptions& options, const char* command);
+// The pattern the unit generates in `tessim sim` and `tessim cosim`: the uniform pattern with
+// the configuration's L (nothing given), or the D3D11 pattern with --partitioning, --outer /
+// --inner or --adaptive, which the unit takes per patch (docs/patterns.md §8).
+struct UnitPatternOptions {
+  std::string partitioning, outer, inner;
+  AdaptiveOptions adaptive;
+
+  bool given() const { return !partitioning.empty() || !outer.empty() || !inner.empty() || adaptive.given(); }
+  // std::nullopt: the uniform pattern. Otherwise the D3D11 settings, every factor L unless
+  // --outer or --adaptive says otherwise. Checked before any mesh is read: InputError(command,
+  // option, reason).
+  std::optional<TessSettings> settings(const char* command, int L) const;
+};
+void add_unit_pattern_options(CLI::App& cmd, UnitPatternOptions& options, const char* command);
 
 // Checks the text of a numeric option before CLI11 converts it, so that a bad value is an
 // InputError(source, element, reason) quoting the text as given: "'abc' is not an integer",

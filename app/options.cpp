@@ -227,15 +227,29 @@ TessSettings PatternOptions::settings(const char* command) const {
   return s;
 }
 
-std::optional<TessSettings> adaptive_workload(const AdaptiveOptions& options, const char* command) {
-  if (!options.given()) {
-    if (!options.camera.empty()) throw InputError(command, "--camera", "needs --adaptive screen");
+void add_unit_pattern_options(CLI::App& cmd, UnitPatternOptions& o, const char* command) {
+  const bool random = std::string_view(command) == "cosim";
+  cmd.add_option("--partitioning", o.partitioning,
+                 std::string("the unit generates the D3D11 pattern with this spacing: integer, pow2, fractional_odd, "
+                             "fractional_even (default: the uniform pattern; integer with --outer or --adaptive)") +
+                     (random ? "; with --random the factors are drawn, and 'mixed' draws a partitioning per triangle" : ""));
+  cmd.add_option("--outer", o.outer, "D3D11 outer factors A,B,C (edges u=0, v=0, w=0), the same for every patch");
+  cmd.add_option("--inner", o.inner, "D3D11 inner factor with --outer (default: the largest outer factor)");
+  add_adaptive_options(cmd, o.adaptive, command);
+}
+
+std::optional<TessSettings> UnitPatternOptions::settings(const char* command, int L) const {
+  if (!given()) {
+    if (!adaptive.camera.empty()) throw InputError(command, "--camera", "needs --adaptive screen");
     return std::nullopt;
   }
-  TessSettings s;
-  options.apply(s, command);
-  validate(s, command);
-  return s;
+  PatternOptions p;
+  p.factor = L;
+  p.partitioning = partitioning;
+  p.outer = outer;
+  p.inner = inner;
+  p.adaptive = adaptive;
+  return p.settings(command);
 }
 
 }  // namespace tessim::app

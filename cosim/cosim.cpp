@@ -36,7 +36,7 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   CosimReport& rep = run.report;
   rep.variant = opts.variant;
   rep.seed = opts.seed;
-  for (const auto& t : stream) run.expected_vertices += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
+  for (const auto& t : stream) run.expected_vertices += static_cast<std::uint64_t>(sim::patch_vertex_count(t));
 
   sim::ModelDut model(opts.unit);
   sim::Dut& expected = model;  // the reference implementation
@@ -120,8 +120,8 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
     const sim::VertexFx vtx_front = vtx_valid ? expected.vtx() : sim::VertexFx{};
     if (coverage && tb.pushed()) coverage->sample_triangle(in.tri, opts.unit.normals);
     if (tb.pushed()) {
-      note("cycle " + std::to_string(cycle) + ": triangle " + std::to_string(in.tri.id) + " in (L=" +
-           std::to_string(in.tri.L) + ")");
+      note("cycle " + std::to_string(cycle) + ": triangle " + std::to_string(in.tri.id) + " in (" + sim::describe_pattern(in.tri) +
+           ")");
       progress.transfer(cycle);
     }
     if (tb.gpe_cycle().accepted) {
@@ -184,9 +184,12 @@ CosimReport run_cosim_until(const std::vector<sim::TriangleFx>& stream, const Co
     if (stream[i].id != i)
       throw InputError("co-simulation stream", "triangle " + std::to_string(i),
                        "patch ids must be the stream positions");
-    if (stream[i].L < 1 || stream[i].L > kMaxTessFactor)
-      throw InputError("co-simulation stream", "triangle " + std::to_string(i),
-                       "factor " + std::to_string(stream[i].L) + " outside 1.." + std::to_string(kMaxTessFactor));
+    const std::string problem = sim::tri_pattern_problem(stream[i]);
+    if (!problem.empty()) throw InputError("co-simulation stream", "triangle " + std::to_string(i), problem);
+    if (stream[i].pattern != sim::TriPattern::uniform && opts.unit.format.bary_bits < 16)
+      throw InputError("co-simulation configuration", "bary_bits",
+                       "the D3D11 pattern's points are 16.16: it needs bary_bits >= 16, not " +
+                           std::to_string(opts.unit.format.bary_bits));
   }
   auto rtl = rtl::make_rtl_unit(opts.variant, opts.seed);
   rtl::check_config(*rtl, opts.unit);  // throws InputError naming the first parameter that differs
@@ -322,6 +325,41 @@ std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t s
     out.push_back(t);
   }
   return out;
+}
+
+void assign_random_patterns(std::vector<sim::TriangleFx>& stream, std::uint64_t seed, int max_factor,
+                            std::optional<Partitioning> partitioning) {
+  sim::SplitMix64 rng(seed ^ 0xd3d11d3d11d3d11dULL);
+  auto uni = [&](double lo, double hi) { return lo + (hi - lo) * rng.uniform(); };
+  const double top = static_cast<double>(max_factor);
+  // A factor: mostly uniform in [0.5, top], often right next to an integer (the rounding
+  // boundaries of the fractional partitionings), sometimes exactly 1 or beyond the range.
+  auto factor = [&]() -> float {
+    switch (rng.next() % 8) {
+      case 0: return 1.0f;
+      case 1:
+      case 2: {
+        const double k = std::floor(uni(1.0, top + 1.0));
+        const double eps = std::ldexp(1.0, -static_cast<int>(rng.next() % 20));
+        return static_cast<float>(rng.next() % 2 ? k + eps : k - eps);
+      }
+      case 3: return static_cast<float>(uni(top, 70.0));
+      default: return static_cast<float>(uni(0.5, top));
+    }
+  };
+  constexpr Partitioning kAll[] = {Partitioning::integer, Partitioning::pow2, Partitioning::fractional_odd,
+                                   Partitioning::fractional_even};
+  for (sim::TriangleFx& t : stream) {
+    const Partitioning p = partitioning ? *partitioning : kAll[rng.next() % 4];
+    // A culled patch is not sent to the unit: draw again (a factor 1 - 1 = 0 culls).
+    D3D11Factors f;
+    do {
+      const std::array<float, 3> outer{factor(), factor(), factor()};
+      const float inner = rng.next() % 4 == 0 ? 1.0f : factor();
+      f = d3d11_tri_factors(outer, inner, p);
+    } while (f.culled);
+    sim::set_d3d11_pattern(t, f, p);
+  }
 }
 
 }  // namespace tessim::cosim

@@ -85,4 +85,12 @@ std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t s
                                               double degenerate_share = 0.1, double extent = 1.0,
                                               bool with_tags = false);
 
+// Gives every triangle of the stream a D3D11 pattern with random factors (docs/patterns.md): each
+// factor mostly in [0.5, max_factor], often within 2^-19..1 of an integer (the fractional
+// partitionings' rounding boundaries), sometimes 1 or beyond the range (clamped); the inner
+// factor 1 a quarter of the time. `partitioning`: the same for every triangle, or (none) one
+// drawn per triangle. Drawn from a generator of its own: the geometry of a seed's stream stays.
+void assign_random_patterns(std::vector<sim::TriangleFx>& stream, std::uint64_t seed, int max_factor,
+                            std::optional<Partitioning> partitioning = std::nullopt);
+
 }  // namespace tessim::cosim

@@ -1,5 +1,6 @@
 #include "cosim/coverage.hpp"
 
+#include <bit>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -66,6 +67,14 @@ void FunctionalCoverage::sample_cycle(const sim::UnitInputs& in, bool vtx_valid,
 }
 
 void FunctionalCoverage::sample_triangle(const sim::TriangleFx& tri, NormalMode mode) {
+  if (tri.pattern != sim::TriPattern::uniform) {
+    // D3D11 patterns: by partitioning and by points per patch in powers of two (not declared:
+    // streams of the uniform pattern do not reach them).
+    const int points = sim::patch_vertex_count(tri);
+    hit(std::string("pattern/") + partitioning_name(sim::tri_partitioning(tri.pattern)) + "/points<" +
+        std::to_string(1 << std::bit_width(static_cast<unsigned>(points))));
+    return;
+  }
   hit("factor." + std::string(to_string(mode)) + "/L=" + std::to_string(tri.L));
 }
 

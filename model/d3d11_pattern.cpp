@@ -39,69 +39,8 @@ float round_up_pow2(float x) {
   return std::bit_cast<float>((bits & 0x7f800000u) + 0x00800000u);
 }
 
-bool is_odd_integer(float x) { return (static_cast<int>(x) & 1) != 0; }
-
 // Highest set bit cleared (0 stays 0).
 int without_msb(int x) { return x == 0 ? 0 : x & ~static_cast<int>(std::bit_floor(static_cast<unsigned>(x))); }
-
-// How one factor spreads its points along a unit edge. Points are placed on each half of the
-// edge from its end towards the middle and mirrored; a fractional factor blends the positions
-// of floor(half) and ceil(half) segments per half, the extra point splitting one segment
-// chosen so that splits appear in ruler-function order as the factor grows.
-struct Subdivision {
-  bool odd = false;
-  Fixed16 half_fraction = 0;  // fractional part of the (parity-adjusted) half factor
-  int half_points = 0;        // points on one half, the end included and the middle excluded
-  int split_point = 0;        // the point that only exists on the ceil(half) subdivision
-  Fixed16 inv_floor_segments = 0;
-  Fixed16 inv_ceil_segments = 0;
-  int points = 0;  // on the whole edge, both ends included
-};
-
-Subdivision make_subdivision(Fixed16 factor, bool odd) {
-  Subdivision s;
-  s.odd = odd;
-  Fixed16 half = (factor + 1) / 2;
-  // An even factor of 1 is handled as an odd one: half a segment cannot be centred.
-  if (odd || half == kHalf) half += kHalf;
-  const Fixed16 floor_half = fixed_floor(half), ceil_half = fixed_ceil(half);
-  s.half_fraction = half - floor_half;
-  s.half_points = ceil_half >> 16;
-  const int floor_half_int = floor_half >> 16;
-  if (ceil_half == floor_half)
-    s.split_point = s.half_points + 1;  // no split: never reached
-  else if (odd)
-    s.split_point = floor_half == kFixed16One ? 0 : (without_msb(floor_half_int - 1) << 1) + 1;
-  else
-    s.split_point = (without_msb(floor_half_int) << 1) + 1;
-  int floor_segments = (floor_half * 2) >> 16, ceil_segments = (ceil_half * 2) >> 16;
-  if (odd) {
-    floor_segments -= 1;
-    ceil_segments -= 1;
-  }
-  s.inv_floor_segments = fixed16_reciprocal(floor_segments);
-  s.inv_ceil_segments = fixed16_reciprocal(ceil_segments);
-  s.points = odd ? (fixed_ceil(kHalf + (factor + 1) / 2) * 2) >> 16 : ((fixed_ceil((factor + 1) / 2) * 2) >> 16) + 1;
-  return s;
-}
-
-// Position of point `index` (0 .. points - 1) along the edge, 16.16 in [0, 1].
-Fixed16 place(const Subdivision& s, int index) {
-  bool mirrored = false;
-  if (index >= s.half_points) {
-    index = 2 * s.half_points - index - (s.odd ? 1 : 0);
-    mirrored = true;
-  }
-  // The middle is exact; the blend below could miss 0.5 by a unit.
-  if (index == s.half_points) return kHalf;
-  const std::uint64_t on_ceil = static_cast<std::uint64_t>(index) * static_cast<std::uint32_t>(s.inv_ceil_segments);
-  const int floor_index = index > s.split_point ? index - 1 : index;
-  const std::uint64_t on_floor = static_cast<std::uint64_t>(floor_index) * static_cast<std::uint32_t>(s.inv_floor_segments);
-  const std::uint64_t f = static_cast<std::uint32_t>(s.half_fraction);
-  const std::uint64_t blend = on_floor * (kFixed16One - f) + on_ceil * f;
-  const auto position = static_cast<Fixed16>((blend + kHalf) >> 16);
-  return mirrored ? kFixed16One - position : position;
-}
 
 // Order in which the stitcher of the first ring visits positions on a half edge: 0, the
 // middle (32), then 16, 8, 17, 4, 18, ...: entry k > 1 with k - 1 = 2^t (2j + 1) is 16/2^t + j.
@@ -205,6 +144,16 @@ class Stitcher {
   int i_ = 0, o_ = 0;
 };
 
+// The fields d3d11_factors_from_fixed() derives, into factors whose floats stay those given.
+void processed_into(D3D11Factors& f, const D3D11Factors& processed) {
+  f.single_triangle = processed.single_triangle;
+  f.outer_odd = processed.outer_odd;
+  f.inner_odd = processed.inner_odd;
+  f.inner_fixed = processed.inner_fixed;
+  f.outer_points = processed.outer_points;
+  f.inner_points = processed.inner_points;
+}
+
 }  // namespace
 
 const char* partitioning_name(Partitioning p) {
@@ -230,6 +179,115 @@ std::optional<Winding> parse_winding(std::string_view name) {
   if (name == "ccw") return Winding::ccw;
   if (name == "cw") return Winding::cw;
   return std::nullopt;
+}
+
+D3D11Edge d3d11_edge(Fixed16 factor, bool odd) {
+  D3D11Edge s;
+  s.odd = odd;
+  Fixed16 half = (factor + 1) / 2;
+  // An even factor of 1 is handled as an odd one: half a segment cannot be centred.
+  if (odd || half == kHalf) half += kHalf;
+  const Fixed16 floor_half = fixed_floor(half), ceil_half = fixed_ceil(half);
+  s.half_fraction = half - floor_half;
+  s.half_points = ceil_half >> 16;
+  const int floor_half_int = floor_half >> 16;
+  if (ceil_half == floor_half)
+    s.split_point = s.half_points + 1;  // no split: never reached
+  else if (odd)
+    s.split_point = floor_half == kFixed16One ? 0 : (without_msb(floor_half_int - 1) << 1) + 1;
+  else
+    s.split_point = (without_msb(floor_half_int) << 1) + 1;
+  int floor_segments = (floor_half * 2) >> 16, ceil_segments = (ceil_half * 2) >> 16;
+  if (odd) {
+    floor_segments -= 1;
+    ceil_segments -= 1;
+  }
+  s.inv_floor_segments = fixed16_reciprocal(floor_segments);
+  s.inv_ceil_segments = fixed16_reciprocal(ceil_segments);
+  const auto phi = static_cast<std::uint64_t>(s.half_fraction);
+  s.floor_weight = static_cast<std::uint64_t>(s.inv_floor_segments) * (kFixed16One - phi);
+  s.ceil_weight = static_cast<std::uint64_t>(s.inv_ceil_segments) * phi;
+  s.points = odd ? (fixed_ceil(kHalf + (factor + 1) / 2) * 2) >> 16 : ((fixed_ceil((factor + 1) / 2) * 2) >> 16) + 1;
+  return s;
+}
+
+Fixed16 d3d11_place(const D3D11Edge& s, int index) {
+  bool mirrored = false;
+  if (index >= s.half_points) {
+    index = 2 * s.half_points - index - (s.odd ? 1 : 0);
+    mirrored = true;
+  }
+  // The middle is exact; the blend below could miss 0.5 by a unit.
+  if (index == s.half_points) return kHalf;
+  // i' R(n_floor)(1 - φ) + i R(n_ceil) φ, rounded: the blend of the two placements i' / n_floor
+  // and i / n_ceil, grouped so that the products of the factor alone are made once per edge.
+  const int floor_index = index > s.split_point ? index - 1 : index;
+  const std::uint64_t blend = static_cast<std::uint64_t>(floor_index) * s.floor_weight +
+                              static_cast<std::uint64_t>(index) * s.ceil_weight;
+  const auto position = static_cast<Fixed16>((blend + kHalf) >> 16);
+  return mirrored ? kFixed16One - position : position;
+}
+
+D3D11Setup d3d11_setup(const D3D11Factors& f) {
+  D3D11Setup s;
+  s.factors = f;
+  if (f.culled) return s;
+  for (int e = 0; e < 3; ++e) {
+    s.outer[static_cast<std::size_t>(e)] = d3d11_edge(f.outer_fixed[static_cast<std::size_t>(e)], f.outer_odd[static_cast<std::size_t>(e)]);
+    s.point_count += f.outer_points[static_cast<std::size_t>(e)] - 1;
+  }
+  if (f.single_triangle) return s;
+  s.inner = d3d11_edge(f.inner_fixed, f.inner_odd);
+  const int n = f.inner_points;
+  for (int r = 1; r < n / 2; ++r) s.point_count += 3 * (n - 1 - 2 * r);
+  if (!f.inner_odd) s.point_count += 1;  // the centre
+  return s;
+}
+
+void D3D11PointWalker::start(const D3D11Setup& setup) {
+  ring_ = edge_ = p_ = index_ = 0;
+  last_ = setup.point_count == 1;
+}
+
+void D3D11PointWalker::enter_ring(const D3D11Setup& setup, int ring) {
+  ring_ = ring;
+  edge_ = 0;
+  p_ = ring;
+  ring_last_ = setup.factors.inner_points - 1 - ring;
+  // The ring's edges lie at barycentric distance 2/3 t_r from the outer ones; a point's
+  // coordinate along the edge is t - (d + 2^-16) / 2, putting the corners at (d, d, 1 - 2d).
+  const std::uint64_t scaled = static_cast<std::uint64_t>(d3d11_place(setup.inner, ring)) * kTwoThirds;
+  perp_ = static_cast<Fixed16>((scaled + kHalf) >> 16);
+  shift_ = (perp_ + 1) / 2;
+}
+
+FixedUV D3D11PointWalker::point(const D3D11Setup& setup) const {
+  if (edge_ == 3) return {kOneThird, kOneThird};
+  if (ring_ == 0) {
+    const D3D11Edge& edge = setup.outer[static_cast<std::size_t>(edge_)];
+    const int last = edge.points - 1;
+    const Fixed16 t = d3d11_place(edge, edge_ == 1 ? p_ : last - p_);
+    if (edge_ == 0) return {0, t};
+    if (edge_ == 1) return {t, 0};
+    return {t, kFixed16One - t};
+  }
+  const Fixed16 t = d3d11_place(setup.inner, edge_ == 1 ? p_ : ring_last_ - (p_ - ring_)) - shift_;
+  if (edge_ == 0) return {perp_, t};
+  if (edge_ == 1) return {t, perp_};
+  return {t, kFixed16One - t - perp_};
+}
+
+void D3D11PointWalker::next(const D3D11Setup& setup) {
+  ++index_;
+  ++p_;
+  last_ = index_ == setup.point_count - 1;
+  const int edge_end = ring_ == 0 ? setup.outer[static_cast<std::size_t>(edge_)].points - 1 : ring_last_;
+  if (edge_ == 3 || p_ < edge_end) return;
+  p_ = ring_;
+  if (++edge_ < 3) return;
+  // Ring done: the next ring inwards, or the centre of an even pattern (a ring of its own).
+  if (ring_ + 1 < setup.factors.inner_points / 2) enter_ring(setup, ring_ + 1);
+  else ++ring_;
 }
 
 Fixed16 float_to_fixed16(float x) {
@@ -270,13 +328,27 @@ D3D11Factors d3d11_tri_factors(const std::array<float, 3>& outer_in, float inner
   f.inner = clamp_factor(inner_in, inner_lo, hi);
   if (integer_like(partitioning)) f.inner = round_integer(f.inner);
 
+  for (int e = 0; e < 3; ++e) f.outer_fixed[e] = float_to_fixed16(f.outer[e]);
+  const D3D11Factors processed = d3d11_factors_from_fixed(
+      f.outer_fixed, float_to_fixed16(f.inner), partitioning == Partitioning::pow2 ? Partitioning::integer : partitioning);
+  processed_into(f, processed);
+  return f;
+}
+
+D3D11Factors d3d11_factors_from_fixed(const std::array<Fixed16, 3>& outer_fixed, Fixed16 inner_fixed,
+                                      Partitioning partitioning) {
+  D3D11Factors f;
+  const bool odd_partitioning = partitioning == Partitioning::fractional_odd;
+  f.outer_fixed = outer_fixed;
+  f.inner_fixed = inner_fixed;
   for (int e = 0; e < 3; ++e) {
-    f.outer_odd[e] = integer_like(partitioning) ? is_odd_integer(f.outer[e]) : odd_partitioning;
-    f.outer_fixed[e] = float_to_fixed16(f.outer[e]);
+    f.outer[e] = static_cast<float>(fixed16_to_double(outer_fixed[e]));
+    f.outer_odd[e] = integer_like(partitioning) ? ((outer_fixed[e] >> 16) & 1) != 0 : odd_partitioning;
   }
+  f.inner = static_cast<float>(fixed16_to_double(inner_fixed));
   // An integer inner factor of 1 counts as even: the rings end in a centre point.
-  f.inner_odd = integer_like(partitioning) ? is_odd_integer(f.inner) && f.inner != 1.0f : odd_partitioning;
-  f.inner_fixed = float_to_fixed16(f.inner);
+  f.inner_odd = integer_like(partitioning) ? ((inner_fixed >> 16) & 1) != 0 && inner_fixed != kFixed16One
+                                           : odd_partitioning;
 
   if (partitioning != Partitioning::fractional_even && f.inner_fixed == kFixed16One &&
       std::all_of(f.outer_fixed.begin(), f.outer_fixed.end(), [](Fixed16 x) { return x == kFixed16One; })) {
@@ -285,64 +357,39 @@ D3D11Factors d3d11_tri_factors(const std::array<float, 3>& outer_in, float inner
     f.inner_points = 0;
     return f;
   }
-  for (int e = 0; e < 3; ++e) f.outer_points[e] = make_subdivision(f.outer_fixed[e], f.outer_odd[e]).points;
+  for (int e = 0; e < 3; ++e) f.outer_points[e] = d3d11_edge(f.outer_fixed[e], f.outer_odd[e]).points;
   // At least one ring inside the outer one, even when the inner factor is 1.
-  f.inner_points = std::max(f.inner_odd ? 4 : 3, make_subdivision(f.inner_fixed, f.inner_odd).points);
+  f.inner_points = std::max(f.inner_odd ? 4 : 3, d3d11_edge(f.inner_fixed, f.inner_odd).points);
   return f;
 }
 
 D3D11Pattern d3d11_tri_pattern(const std::array<float, 3>& outer, float inner, Partitioning partitioning,
                                Winding winding) {
+  return d3d11_pattern(d3d11_setup(d3d11_tri_factors(outer, inner, partitioning)), winding);
+}
+
+D3D11Pattern d3d11_pattern(const D3D11Setup& setup, Winding winding) {
   D3D11Pattern pattern;
-  pattern.factors = d3d11_tri_factors(outer, inner, partitioning);
+  pattern.factors = setup.factors;
   const D3D11Factors& f = pattern.factors;
   if (f.culled) return pattern;
   auto& points = pattern.points;
   auto& indices = pattern.indices;
 
-  if (f.single_triangle) {
-    points = {{0, kFixed16One}, {0, 0}, {kFixed16One, 0}};  // the corners v = 1, w = 1, u = 1
+  points.reserve(static_cast<std::size_t>(setup.point_count));
+  for (D3D11PointWalker walk(setup);; walk.next(setup)) {
+    points.push_back(walk.point(setup));
+    if (walk.last()) break;
+  }
+  if (f.single_triangle) {  // the corners v = 1, w = 1, u = 1
     emit_triangle(indices, winding, 0, 1, 2);
     return pattern;
   }
-
-  std::array<Subdivision, 3> outer_sub;
-  for (int e = 0; e < 3; ++e) outer_sub[e] = make_subdivision(f.outer_fixed[e], f.outer_odd[e]);
-  const Subdivision inner_sub = make_subdivision(f.inner_fixed, f.inner_odd);
+  const std::array<D3D11Edge, 3>& outer_sub = setup.outer;
+  const D3D11Edge& inner_sub = setup.inner;
   const int n_inner = f.inner_points;
-
-  // Outer ring from corner v = 1: down edge u = 0 to w = 1, along v = 0 to u = 1, back along
-  // w = 0. Each edge lists its points without its last corner, the next edge's first.
-  for (int e = 0; e < 3; ++e) {
-    const int last = outer_sub[e].points - 1;
-    for (int p = 0; p < last; ++p) {
-      const Fixed16 t = place(outer_sub[e], e == 1 ? p : last - p);
-      if (e == 0) points.push_back({0, t});
-      else if (e == 1) points.push_back({t, 0});
-      else points.push_back({t, kFixed16One - t});
-    }
-  }
-  const auto outer_ring_points = static_cast<std::uint32_t>(points.size());
-
-  // Inner rings, same walk. Ring r reuses points r .. n_inner - 1 - r of the inner factor's
-  // edge subdivision t: its edges lie at barycentric distance d = 2/3 t_r from the outer
-  // edges and a point's coordinate along the edge is t - d/2, which puts the ring's corners at
-  // (d, d, 1 - 2d) where consecutive edges meet.
-  for (int r = 1; r < n_inner / 2; ++r) {
-    const int last = n_inner - 1 - r;
-    const std::uint64_t scaled = static_cast<std::uint64_t>(place(inner_sub, r)) * kTwoThirds;
-    const auto perp = static_cast<Fixed16>((scaled + kHalf) >> 16);
-    const Fixed16 shift = (perp + 1) / 2;
-    for (int e = 0; e < 3; ++e) {
-      for (int p = r; p < last; ++p) {
-        const Fixed16 t = place(inner_sub, e == 1 ? p : last - (p - r)) - shift;
-        if (e == 0) points.push_back({perp, t});
-        else if (e == 1) points.push_back({t, perp});
-        else points.push_back({t, kFixed16One - t - perp});
-      }
-    }
-  }
-  if (!f.inner_odd) points.push_back({kOneThird, kOneThird});
+  const auto outer_ring_points =
+      static_cast<std::uint32_t>(f.outer_points[0] + f.outer_points[1] + f.outer_points[2] - 3);
 
   // Triangles, ring by ring from the outside, one edge at a time.
   std::array<int, 3> outside_points = f.outer_points;

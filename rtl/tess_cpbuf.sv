@@ -11,13 +11,13 @@ module tess_cpbuf #(
   input  logic                            wr_i,
   input  logic [30*CoordWidth-1:0]        wr_b_i,
   input  logic [18*CoordWidth-1:0]        wr_n_i,
-  input  logic [tess_pkg::FactorBits-1:0] wr_l_i,
+  input  logic [tess_pkg::PatchBits-1:0]  wr_patch_i,  // {setup, pattern, L}
   input  logic [tess_pkg::IdBits-1:0]     wr_id_i,
   input  logic [tess_pkg::FlagBits-1:0]   wr_flags_i,
   // DPG side: buffer[rd_ptr]
   output logic                            rd_full_o,
   output logic                            rd_ptr_o,
-  output logic [tess_pkg::FactorBits-1:0] rd_l_o,
+  output logic [tess_pkg::PatchBits-1:0]  rd_patch_o,
   output logic [tess_pkg::IdBits-1:0]     rd_id_o,
   output logic [tess_pkg::FlagBits-1:0]   rd_flags_o,
   input  logic                            drain_i,     // last domain point handed out
@@ -33,14 +33,14 @@ module tess_cpbuf #(
   logic       wr_ptr_q, rd_ptr_q;
   (* mem2reg *) logic [30*CoordWidth-1:0]        b_q [2];
   (* mem2reg *) logic [18*CoordWidth-1:0]        n_q [2];
-  (* mem2reg *) logic [tess_pkg::FactorBits-1:0] l_q [2];
+  (* mem2reg *) logic [tess_pkg::PatchBits-1:0]  patch_q [2];
   (* mem2reg *) logic [tess_pkg::IdBits-1:0]     id_q [2];
   (* mem2reg *) logic [tess_pkg::FlagBits-1:0]   flags_q [2];
 
   assign wr_empty_o = (state_q[wr_ptr_q] == tess_pkg::BufEmpty);
   assign rd_full_o  = (state_q[rd_ptr_q] == tess_pkg::BufFull);
   assign rd_ptr_o   = rd_ptr_q;
-  assign rd_l_o     = l_q[rd_ptr_q];
+  assign rd_patch_o = patch_q[rd_ptr_q];
   assign rd_id_o    = id_q[rd_ptr_q];
   assign rd_flags_o = flags_q[rd_ptr_q];
 
@@ -69,7 +69,7 @@ module tess_cpbuf #(
     if (wr_i) begin
       b_q[wr_ptr_q]     <= wr_b_i;
       n_q[wr_ptr_q]     <= wr_n_i;
-      l_q[wr_ptr_q]     <= wr_l_i;
+      patch_q[wr_ptr_q] <= wr_patch_i;
       id_q[wr_ptr_q]    <= wr_id_i;
       flags_q[wr_ptr_q] <= wr_flags_i;
     end

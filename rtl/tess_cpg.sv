@@ -23,13 +23,13 @@ module tess_cpg #(
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
   parameter int unsigned CpgTags       = tess_pkg::CpgTags,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
-  localparam int unsigned TriW   = 18 * W + tess_pkg::FactorBits + tess_pkg::IdBits
+  localparam int unsigned TriW   = 18 * W + tess_pkg::DescBits + tess_pkg::IdBits
                                  + ((CpgTags != 0) ? 18 * W : 0)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
   input  logic [tess_pkg::ModeBits-1:0]     mode_i,
-  // TRI FIFO head: {tags (18W, with CpgTags), id, L, N (9W), P (9W)}
+  // TRI FIFO head: {tags (18W, with CpgTags), id, pattern descriptor, N (9W), P (9W)}
   input  logic                              tri_avail_i,
   input  logic [TriW-1:0]                   tri_i,
   output logic                              tri_pop_o,
@@ -38,7 +38,7 @@ module tess_cpg #(
   output logic                              buf_wr_o,
   output logic [30*W-1:0]                   buf_b_o,      // b[0..9], 3 components each
   output logic [18*W-1:0]                   buf_n_o,      // n[0..5]
-  output logic [tess_pkg::FactorBits-1:0]   buf_l_o,
+  output logic [tess_pkg::DescBits-1:0]     buf_desc_o,   // the FSU sets the patch up from it
   output logic [tess_pkg::IdBits-1:0]       buf_id_o,
   output logic [tess_pkg::FlagBits-1:0]     buf_flags_o,
   // Status for the counters
@@ -47,7 +47,7 @@ module tess_cpg #(
   output logic                              active_o      // the busy register (§10 TE classes)
 );
 
-  localparam int unsigned LBits   = tess_pkg::FactorBits;
+  localparam int unsigned DescW   = tess_pkg::DescBits;
   localparam int unsigned IdBits  = tess_pkg::IdBits;
   localparam int unsigned SumTW   = W + 3;                     // sum of six tangent points
   localparam int unsigned X111W   = W + 5;                     // 3 sum(t) - 2 sum(P)
@@ -138,7 +138,7 @@ module tess_cpg #(
   // ------------------------------------------------------------------ the latched triangle
   (* mem2reg *) logic [3*W-1:0] p_q [3];  // [vertex], component c at [cW +: W]
   (* mem2reg *) logic [3*W-1:0] n_q [3];
-  logic [LBits-1:0]  l_q;
+  logic [DescW-1:0]  desc_q;
   logic [IdBits-1:0] id_q;
 
   always_ff @(posedge clk_i) begin
@@ -147,8 +147,8 @@ module tess_cpg #(
         p_q[v] <= tri_i[3 * v * W +: 3 * W];
         n_q[v] <= tri_i[9 * W + 3 * v * W +: 3 * W];
       end
-      l_q  <= tri_i[18 * W +: LBits];
-      id_q <= tri_i[18 * W + LBits +: IdBits];
+      desc_q <= tri_i[18 * W +: DescW];
+      id_q   <= tri_i[18 * W + DescW +: IdBits];
     end
   end
 
@@ -165,7 +165,7 @@ module tess_cpg #(
   logic [tess_pkg::FlagBits-1:0] tag_flags;
 
   if (Tags) begin : g_tags
-    localparam int unsigned TagBase = 18 * W + LBits + IdBits;
+    localparam int unsigned TagBase = 18 * W + DescW + IdBits;
     localparam int unsigned RW      = $clog2(NormLen);
     localparam logic [1:0] PNone = 2'd0, PFace = 2'd1, PCorner = 2'd2, PTan = 2'd3;
 
@@ -611,7 +611,7 @@ module tess_cpg #(
                     corner_n[1],       // 2: n020
                     mid[0],            // 1: n110 (edge P1->P2)
                     corner_n[0]};      // 0: n200
-  assign buf_l_o     = l_q;
+  assign buf_desc_o  = desc_q;
   assign buf_id_o    = id_q;
   assign buf_flags_o = flags_q | ((!mode_linear && (corner_sat != '0)) ? tess_pkg::FlagSaturated
                                                                        : '0);

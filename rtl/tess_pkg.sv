@@ -32,6 +32,24 @@ package tess_pkg;
   localparam int unsigned MaxFactor  = 64;
   localparam int unsigned CounterBits = 64;
 
+  // ---- tessellation patterns (§7; sim/cpg.hpp TriPattern) ----
+  localparam int unsigned PatternBits = 2;
+  localparam logic [1:0] PatUniform  = 2'd0;  // one factor L, the lattice (j/L, k/L)
+  localparam logic [1:0] PatInteger  = 2'd1;  // D3D11 pattern, integer (and pow2) partitioning
+  localparam logic [1:0] PatFracOdd  = 2'd2;  // D3D11 pattern, fractional_odd
+  localparam logic [1:0] PatFracEven = 2'd3;  // D3D11 pattern, fractional_even
+  localparam int unsigned FixBits    = 23;    // a D3D11 factor: unsigned 16.16, at most 64
+  localparam int unsigned IndexBits  = 12;    // a point's index in its patch (< 3169)
+  // The triangle's pattern descriptor: {factor[3] (inner), factor[2..0] (outer), pattern, L}.
+  localparam int unsigned DescBits   = FactorBits + PatternBits + 4 * FixBits;
+  // One edge's setup (tess_fsu_edge): {points 7, ceil weight 33, floor weight 33, split 6,
+  // half points 6, odd 1}.
+  localparam int unsigned EdgeBits   = 86;
+  // A patch's setup (tess_fsu): {point count, inner points 7, inner edge, outer edges 2, 1, 0}.
+  localparam int unsigned SetupBits  = 4 * EdgeBits + 7 + IndexBits;
+  // What the control-point buffer keeps of a patch besides its nets: {setup, pattern, L}.
+  localparam int unsigned PatchBits  = SetupBits + PatternBits + FactorBits;
+
   // ---- normal modes (sim/cpg.hpp mode_code) ----
   localparam logic [1:0] ModeQuadratic = 2'd0;
   localparam logic [1:0] ModeReflect   = 2'd1;

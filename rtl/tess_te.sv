@@ -11,7 +11,7 @@ module tess_te #(
   parameter int unsigned InjectBug  = tess_pkg::InjectBug,
   localparam int unsigned W         = CoordWidth,
   localparam int unsigned VtxW      = 6 * W + 2 * (BaryBits + 1) + 3 * tess_pkg::FactorBits
-                                      + tess_pkg::IdBits + 1 + tess_pkg::FlagBits
+                                      + tess_pkg::IndexBits + tess_pkg::IdBits + 1 + tess_pkg::FlagBits
 ) (
   input  logic                            clk_i,
   input  logic                            rst_ni,
@@ -19,7 +19,7 @@ module tess_te #(
   // Control-point buffers
   input  logic                            rd_full_i,
   input  logic                            rd_ptr_i,
-  input  logic [tess_pkg::FactorBits-1:0] rd_l_i,
+  input  logic [tess_pkg::PatchBits-1:0]  rd_patch_i,  // {setup, pattern, L}
   input  logic [tess_pkg::IdBits-1:0]     rd_id_i,
   input  logic [tess_pkg::FlagBits-1:0]   rd_flags_i,
   input  logic [2*30*W-1:0]               b_i,
@@ -68,6 +68,7 @@ module tess_te #(
   (* mem2reg *) logic [LBits-1:0]   ctx_j_q [V];
   (* mem2reg *) logic [LBits-1:0]   ctx_k_q [V];
   (* mem2reg *) logic [LBits-1:0]   ctx_l_q [V];
+  (* mem2reg *) logic [tess_pkg::IndexBits-1:0] ctx_index_q [V];
   (* mem2reg *) logic [IdBits-1:0]  ctx_id_q [V];
   (* mem2reg *) logic [FlagW-1:0]   ctx_flags_q [V];
   (* mem2reg *) logic               ctx_last_q [V];
@@ -77,19 +78,23 @@ module tess_te #(
   (* mem2reg *) logic [3*W-1:0]     temp_q [V][NumOps];
 
   // ------------------------------------------------------------------ DPG and allocation
-  logic [LBits-1:0] dpg_j, dpg_k;
+  logic [LBits-1:0] dpg_j, dpg_k, rd_l;
+  logic [tess_pkg::IndexBits-1:0] dpg_index;
   logic [B:0]       dpg_w, dpg_u, dpg_v;
   logic             dpg_last, alloc;
+  // A D3D11 patch's vertices carry L = 0 (j, k: ring and edge).
+  assign rd_l = (rd_patch_i[LBits +: tess_pkg::PatternBits] == tess_pkg::PatUniform) ? rd_patch_i[LBits-1:0] : '0;
 
   assign alloc = (count_q < CntW'(V)) && rd_full_i;
 
   tess_dpg #(.BaryBits(B)) u_dpg (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
-    .l_i      (rd_l_i),
+    .patch_i  (rd_patch_i),
     .consume_i(alloc),
     .j_o      (dpg_j),
     .k_o      (dpg_k),
+    .index_o  (dpg_index),
     .w_o      (dpg_w),
     .u_o      (dpg_u),
     .v_o      (dpg_v),
@@ -256,7 +261,7 @@ module tess_te #(
       end
     end
   end
-  assign vtx_o = {ctx_flags_q[head_q], ctx_last_q[head_q], ctx_id_q[head_q], ctx_l_q[head_q],
+  assign vtx_o = {ctx_flags_q[head_q], ctx_last_q[head_q], ctx_id_q[head_q], ctx_index_q[head_q], ctx_l_q[head_q],
                   ctx_k_q[head_q], ctx_j_q[head_q], ctx_v_q[head_q], ctx_u_q[head_q],
                   head_nrm, head_pos};
 
@@ -300,7 +305,8 @@ module tess_te #(
         ctx_v_q[x]     <= dpg_v;
         ctx_j_q[x]     <= dpg_j;
         ctx_k_q[x]     <= dpg_k;
-        ctx_l_q[x]     <= rd_l_i;
+        ctx_l_q[x]     <= rd_l;
+        ctx_index_q[x] <= dpg_index;
         ctx_id_q[x]    <= rd_id_i;
         ctx_flags_q[x] <= rd_flags_i;
         ctx_last_q[x]  <= dpg_last;

@@ -26,7 +26,9 @@ module tess_unit #(
   output logic                            tri_ready_o,
   input  logic [9*W-1:0]                  tri_p_i,     // vertex v component c at [(3v+c)W +: W]
   input  logic [9*W-1:0]                  tri_n_i,
-  input  logic [tess_pkg::FactorBits-1:0] tri_l_i,
+  input  logic [tess_pkg::FactorBits-1:0] tri_l_i,     // uniform pattern: L in 1..64
+  input  logic [tess_pkg::PatternBits-1:0] tri_pattern_i,  // tess_pkg::Pat*
+  input  logic [4*tess_pkg::FixBits-1:0]  tri_factors_i, // D3D11: factor e at [e FixBits +: FixBits], 3 = inner
   input  logic [tess_pkg::IdBits-1:0]     tri_id_i,
   // Scalar tags, read only with CpgTags: vertex v's Δ (3W), σ, θ, β at [6vW +: 6W]
   input  logic [18*W-1:0]                 tri_tags_i,
@@ -40,6 +42,7 @@ module tess_unit #(
   output logic [tess_pkg::FactorBits-1:0] vtx_j_o,
   output logic [tess_pkg::FactorBits-1:0] vtx_k_o,
   output logic [tess_pkg::FactorBits-1:0] vtx_l_o,
+  output logic [tess_pkg::IndexBits-1:0]  vtx_index_o,
   output logic [tess_pkg::IdBits-1:0]     vtx_id_o,
   output logic                            vtx_last_o,
   output logic [tess_pkg::FlagBits-1:0]   vtx_flags_o,
@@ -63,8 +66,9 @@ module tess_unit #(
   localparam int unsigned LBits  = tess_pkg::FactorBits;
   localparam int unsigned IdBits = tess_pkg::IdBits;
   localparam int unsigned FlagW  = tess_pkg::FlagBits;
-  localparam int unsigned TriW   = 18 * W + LBits + IdBits + ((CpgTags != 0) ? 18 * W : 0);
-  localparam int unsigned VtxW   = 6 * W + 2 * (BaryBits + 1) + 3 * LBits + IdBits + 1 + FlagW;
+  localparam int unsigned DescW  = tess_pkg::DescBits;
+  localparam int unsigned TriW   = 18 * W + DescW + IdBits + ((CpgTags != 0) ? 18 * W : 0);
+  localparam int unsigned VtxW   = 6 * W + 2 * (BaryBits + 1) + 3 * LBits + tess_pkg::IndexBits + IdBits + 1 + FlagW;
   localparam int unsigned TriCntW = $clog2(TriFifoDepth + 1);
   localparam int unsigned VtxCntW = $clog2(VtxFifoDepth + 1);
 
@@ -77,11 +81,11 @@ module tess_unit #(
 
   logic [TriW-1:0] tri_in;
   if (CpgTags != 0) begin : g_tri_tags
-    assign tri_in = {tri_tags_i, tri_id_i, tri_l_i, tri_n_i, tri_p_i};
+    assign tri_in = {tri_tags_i, tri_id_i, tri_factors_i, tri_pattern_i, tri_l_i, tri_n_i, tri_p_i};
   end else begin : g_tri_plain
     logic unused_tags;  // a plain-PN unit ignores the tag inputs
     assign unused_tags = ^tri_tags_i;
-    assign tri_in = {tri_id_i, tri_l_i, tri_n_i, tri_p_i};
+    assign tri_in = {tri_id_i, tri_factors_i, tri_pattern_i, tri_l_i, tri_n_i, tri_p_i};
   end
 
   tess_fifo #(.Width(TriW), .Depth(TriFifoDepth)) u_tri_fifo (
@@ -100,7 +104,7 @@ module tess_unit #(
   logic                cpg_wr, buf_wr_empty;
   logic [30*W-1:0]     cpg_b;
   logic [18*W-1:0]     cpg_n;
-  logic [LBits-1:0]    cpg_l;
+  logic [DescW-1:0]    cpg_desc;
   logic [IdBits-1:0]   cpg_id;
   logic [FlagW-1:0]    cpg_flags;
   logic                cpg_busy, cpg_blocked, cpg_active;
@@ -122,7 +126,7 @@ module tess_unit #(
     .buf_wr_o   (cpg_wr),
     .buf_b_o    (cpg_b),
     .buf_n_o    (cpg_n),
-    .buf_l_o    (cpg_l),
+    .buf_desc_o (cpg_desc),
     .buf_id_o   (cpg_id),
     .buf_flags_o(cpg_flags),
     .busy_o     (cpg_busy),
@@ -130,9 +134,14 @@ module tess_unit #(
     .active_o   (cpg_active)
   );
 
+  // ------------------------------------------------------------------ factor setup (FSU)
+  // Combinational from the descriptor the CPG holds while it computes; stored with the nets.
+  logic [tess_pkg::SetupBits-1:0] cpg_setup;
+  tess_fsu u_fsu (.desc_i(cpg_desc), .setup_o(cpg_setup));
+
   // ------------------------------------------------------------------ control-point buffers
   logic               rd_full, rd_ptr, drain, release_buf, release_last;
-  logic [LBits-1:0]   rd_l;
+  logic [tess_pkg::PatchBits-1:0] rd_patch;
   logic [IdBits-1:0]  rd_id;
   logic [FlagW-1:0]   rd_flags;
   logic [2*30*W-1:0]  cp_b;
@@ -145,12 +154,12 @@ module tess_unit #(
     .wr_i         (cpg_wr),
     .wr_b_i       (cpg_b),
     .wr_n_i       (cpg_n),
-    .wr_l_i       (cpg_l),
+    .wr_patch_i   ({cpg_setup, cpg_desc[LBits +: tess_pkg::PatternBits], cpg_desc[LBits-1:0]}),
     .wr_id_i      (cpg_id),
     .wr_flags_i   (cpg_flags),
     .rd_full_o    (rd_full),
     .rd_ptr_o     (rd_ptr),
-    .rd_l_o       (rd_l),
+    .rd_patch_o   (rd_patch),
     .rd_id_o      (rd_id),
     .rd_flags_o   (rd_flags),
     .drain_i      (drain),
@@ -181,7 +190,7 @@ module tess_unit #(
     .mode_i         (mode_i),
     .rd_full_i      (rd_full),
     .rd_ptr_i       (rd_ptr),
-    .rd_l_i         (rd_l),
+    .rd_patch_i     (rd_patch),
     .rd_id_i        (rd_id),
     .rd_flags_i     (rd_flags),
     .b_i            (cp_b),
@@ -220,7 +229,7 @@ module tess_unit #(
   );
 
   assign vtx_valid_o = !vtx_empty;
-  assign {vtx_flags_o, vtx_last_o, vtx_id_o, vtx_l_o, vtx_k_o, vtx_j_o, vtx_v_o, vtx_u_o,
+  assign {vtx_flags_o, vtx_last_o, vtx_id_o, vtx_index_o, vtx_l_o, vtx_k_o, vtx_j_o, vtx_v_o, vtx_u_o,
           vtx_nrm_o, vtx_pos_o} = vtx_head;
 
   // The FIFO levels only matter through full/empty.
@@ -286,7 +295,7 @@ module tess_unit #(
         assert (vtx_head == vtx_stalled_data_q)
           else $error("tess_unit: vertex data changed while stalled");
       end
-      if (tri_push) begin
+      if (tri_push && tri_pattern_i == tess_pkg::PatUniform) begin
         assert (tri_l_i >= LBits'(1) && tri_l_i <= LBits'(tess_pkg::MaxFactor))
           else $error("tess_unit: tessellation factor %0d outside 1..64", tri_l_i);
       end

@@ -102,14 +102,13 @@ double AnalyticPrediction::run_cycles(std::uint64_t triangles) const {
          patch_vertices * behind_cpg + tail_cycles;
 }
 
-VaryingWorkloadBounds varying_bounds(const AnalyticPrediction& p,
-                                     std::span<const std::uint64_t> patches_with_factor) {
+VaryingWorkloadBounds varying_bounds(const AnalyticPrediction& p, const std::map<int, std::uint64_t>& patches_with_vertices) {
   const double behind_cpg = std::max({p.int_issue, p.te_chain, p.dpg, p.gpe_vertex});
   const double per_patch_cpg = p.cpg * p.patch_vertices;  // C + 1 (dedicated) per patch
   double no_buffer = 0, patches = 0, vertices = 0;
-  for (std::size_t L = 1; L < patches_with_factor.size(); ++L) {
-    const auto n = static_cast<double>(patches_with_factor[L]);
-    const double P = pattern_vertex_count(static_cast<int>(L));
+  for (const auto& [points, count] : patches_with_vertices) {
+    const auto n = static_cast<double>(count);
+    const auto P = static_cast<double>(points);
     no_buffer += n * std::max(per_patch_cpg, P * behind_cpg);
     patches += n;
     vertices += n * P;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -50,9 +51,8 @@ struct VaryingWorkloadBounds {
   double no_buffer_cycles = 0;
   double full_buffer_cycles = 0;
 };
-// `patches_with_factor[L]`: patches of the uniform pattern with factor L.
-VaryingWorkloadBounds varying_bounds(const AnalyticPrediction& p,
-                                     std::span<const std::uint64_t> patches_with_factor);
+// `patches_with_vertices`: vertices per patch -> patches (any pattern).
+VaryingWorkloadBounds varying_bounds(const AnalyticPrediction& p, const std::map<int, std::uint64_t>& patches_with_vertices);
 
 // Span S of one vertex's dependence graph when it has the INT blocks to itself: the cycles
 // from its allocation to the issue of its last op under the scheduler's rule (ops in index

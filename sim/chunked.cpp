@@ -64,6 +64,7 @@ SimResult merge_chunks(std::span<const SimResult> parts, const UnitConfig& cfg) 
   SimResult r;
   const SimResult& first = parts.front();
   r.mesh = first.mesh;
+  r.factors.pattern = first.factors.pattern;
   r.config = cfg;
   r.cpg_cycles = first.cpg_cycles;
   r.scaling = first.scaling;
@@ -97,7 +98,9 @@ SimResult merge_chunks(std::span<const SimResult> parts, const UnitConfig& cfg) 
     r.zero_normals += p.zero_normals;
     for (std::size_t L = 0; L < r.factors.patches_with_factor.size(); ++L)
       r.factors.patches_with_factor[L] += p.factors.patches_with_factor[L];
+    for (const auto& [points, n] : p.factors.patches_with_vertices) r.factors.patches_with_vertices[points] += n;
     r.factors.vertices += p.factors.vertices;
+    r.factors.culled += p.factors.culled;
     if (p.errors) {
       if (!r.errors) {
         r.errors = p.errors;
@@ -114,15 +117,15 @@ SimResult merge_chunks(std::span<const SimResult> parts, const UnitConfig& cfg) 
     timelines.push_back(p.timeline);
     r.chunk_cycles.push_back(p.unit.cycles);
   }
-  r.factors.uniform =
-      std::count_if(r.factors.patches_with_factor.begin(), r.factors.patches_with_factor.end(),
-                    [](std::uint64_t n) { return n > 0; }) <= 1;
+  r.factors.uniform = r.factors.pattern.empty() &&
+                      std::count_if(r.factors.patches_with_factor.begin(), r.factors.patches_with_factor.end(),
+                                    [](std::uint64_t n) { return n > 0; }) <= 1;
   r.timeline = Timeline::concatenate(timelines);
   return r;
 }
 
 SimResult simulate_chunked(const Mesh& mesh, const UnitConfig& cfg, int chunks, const ChunkCallbacks& callbacks,
-                           std::span<const std::uint8_t> factors) {
+                           MeshPatterns patterns) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<std::uint64_t> starts = chunk_starts(mesh.triangle_count(), chunks);
   const auto k_chunks = static_cast<std::size_t>(chunks);
@@ -145,7 +148,7 @@ SimResult simulate_chunked(const Mesh& mesh, const UnitConfig& cfg, int chunks, 
       try {
         if (cancel.load()) throw SimCancelled();
         results[k] = simulate_range(mesh, chunk_config(cfg, static_cast<int>(k)), starts[k], starts[k + 1], hooks[k],
-                                    factors);
+                                    patterns);
       } catch (...) {
         errors[k] = std::current_exception();
         cancel = true;

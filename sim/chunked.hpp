@@ -44,7 +44,7 @@ struct ChunkCallbacks {
 // input, a saturated patch) stops the others and is rethrown: the first in stream order, as a
 // single run would throw it.
 SimResult simulate_chunked(const Mesh& mesh, const UnitConfig& cfg, int chunks, const ChunkCallbacks& callbacks = {},
-                           std::span<const std::uint8_t> factors = {});
+                           MeshPatterns patterns = {});
 
 // The chunks' results (in stream order) as one run of `cfg`: every counter summed (cycles too),
 // maxima of maxima, error sums weighted by their counts, the timelines concatenated

@@ -1,8 +1,10 @@
 #include "sim/cpg.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
+#include "model/pattern.hpp"
 #include "model/pn.hpp"
 
 namespace tessim::sim {
@@ -231,6 +233,59 @@ int cpg_cycles(NormalMode mode, const NumberFormat& f, const CpgVariant& v) {
   // control-point buffer
   const int edges_in_turn = v.lanes == 1 ? 3 : 1;
   return edges_in_turn * cpg_edge_cycles(mode, f, v.digit_bits) + 2;
+}
+
+Partitioning tri_partitioning(TriPattern pattern) {
+  switch (pattern) {
+    case TriPattern::fractional_odd: return Partitioning::fractional_odd;
+    case TriPattern::fractional_even: return Partitioning::fractional_even;
+    default: return Partitioning::integer;
+  }
+}
+
+D3D11Setup tri_setup(const TriangleFx& tri) {
+  return d3d11_setup(
+      d3d11_factors_from_fixed({tri.factors[0], tri.factors[1], tri.factors[2]}, tri.factors[3], tri_partitioning(tri.pattern)));
+}
+
+std::string describe_pattern(const TriangleFx& tri) {
+  if (tri.pattern == TriPattern::uniform) return "L=" + std::to_string(tri.L);
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%s %.6g,%.6g,%.6g inner %.6g", partitioning_name(tri_partitioning(tri.pattern)),
+                fixed16_to_double(tri.factors[0]), fixed16_to_double(tri.factors[1]), fixed16_to_double(tri.factors[2]),
+                fixed16_to_double(tri.factors[3]));
+  return buf;
+}
+
+int patch_vertex_count(const TriangleFx& tri) {
+  return tri.pattern == TriPattern::uniform ? pattern_vertex_count(tri.L) : tri_setup(tri).point_count;
+}
+
+std::string tri_pattern_problem(const TriangleFx& tri) {
+  if (tri.pattern == TriPattern::uniform) {
+    if (tri.L < 1 || tri.L > kMaxTessFactor)
+      return "tessellation factor " + std::to_string(tri.L) + " outside 1.." + std::to_string(kMaxTessFactor);
+    return {};
+  }
+  if (static_cast<int>(tri.pattern) > 3) return "pattern code " + std::to_string(static_cast<int>(tri.pattern));
+  // The ranges of docs/patterns.md §1, in 16.16.
+  const Fixed16 one = kFixed16One;
+  Fixed16 lo = one, hi = 64 * one;
+  if (tri.pattern == TriPattern::fractional_odd) hi = 63 * one;
+  if (tri.pattern == TriPattern::fractional_even) lo = 2 * one;
+  static constexpr const char* kNames[] = {"outer factor 0", "outer factor 1", "outer factor 2", "inner factor"};
+  for (int i = 0; i < 4; ++i) {
+    const Fixed16 f = tri.factors[static_cast<std::size_t>(i)];
+    const char* reason = nullptr;
+    if (f < lo || f > hi) reason = "outside the partitioning's range";
+    else if (tri.pattern == TriPattern::integer && (f & 0xffff) != 0) reason = "not an integer (integer partitioning)";
+    if (reason) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s 0x%x (16.16) %s", kNames[i], static_cast<unsigned>(f), reason);
+      return buf;
+    }
+  }
+  return {};
 }
 
 }  // namespace tessim::sim

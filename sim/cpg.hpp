@@ -5,7 +5,9 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 
+#include "model/d3d11_pattern.hpp"
 #include "model/normal_mode.hpp"
 #include "sim/fixed.hpp"
 
@@ -21,16 +23,38 @@ struct TagsFx {
   bool operator==(const TagsFx&) const = default;
 };
 
+// The tessellation pattern of a patch (docs/microarchitecture.md §7): the uniform pattern with
+// one factor L, or the Direct3D 11 pattern (docs/patterns.md) with per-edge factors. pow2 travels
+// as integer: the host has rounded its factors to powers of two already.
+enum class TriPattern : std::uint8_t { uniform = 0, integer = 1, fractional_odd = 2, fractional_even = 3 };
+
 // One input triangle as it crosses the unit's input stream.
 struct TriangleFx {
   std::array<FxVec, 3> p{};  // P1, P2, P3
   std::array<FxVec, 3> n{};  // N1, N2, N3 (unit length before quantisation)
-  int L = 1;                 // tessification factor 1..64
+  int L = 1;                 // tessellation factor 1..64 of the uniform pattern
+  TriPattern pattern = TriPattern::uniform;
+  // D3D11 patterns: outer factors e0, e1, e2 and the inner factor, unsigned 16.16, as the host
+  // hands them over: clamped to the partitioning's range and rounded (d3d11_tri_factors()).
+  std::array<Fixed16, 4> factors{};
   std::uint32_t id = 0;      // patch id, passed through to every output vertex
   // Scalar tags per corner; all neutral for plain PN. They cross the input stream only to a CPG
   // that takes them (cpg_tags; the RTL's CpgTags), which alone reads them.
   std::array<TagsFx, 3> tags{};
 };
+
+// The partitioning a D3D11 triangle pattern stands for.
+Partitioning tri_partitioning(TriPattern pattern);
+// The D3D11 pattern's walk of a triangle (pattern != uniform): what the unit derives from its
+// factors (d3d11_factors_from_fixed, d3d11_setup).
+D3D11Setup tri_setup(const TriangleFx& tri);
+// "L=4", or "fractional_odd 3.5,2.2,7.9 inner 4.4" (the factors as the unit receives them).
+std::string describe_pattern(const TriangleFx& tri);
+// Vertices the unit produces for the triangle: its pattern's points.
+int patch_vertex_count(const TriangleFx& tri);
+// The reason the unit cannot take the triangle's pattern and factors, empty if it can: L outside
+// 1..64, a D3D11 factor outside the partitioning's range or not rounded as it requires.
+std::string tri_pattern_problem(const TriangleFx& tri);
 
 // Contents of one control-point buffer (net layout of model/pn.hpp, net_index()).
 // The normal net is stored at twice its Bernstein value (corners 2 Ni, mid-edges n_ij), which

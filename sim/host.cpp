@@ -78,6 +78,26 @@ TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scal
   return tri;
 }
 
+void set_d3d11_pattern(TriangleFx& tri, const D3D11Factors& f, Partitioning partitioning) {
+  switch (partitioning) {
+    case Partitioning::fractional_odd: tri.pattern = TriPattern::fractional_odd; break;
+    case Partitioning::fractional_even: tri.pattern = TriPattern::fractional_even; break;
+    default: tri.pattern = TriPattern::integer; break;
+  }
+  tri.factors = {f.outer_fixed[0], f.outer_fixed[1], f.outer_fixed[2], f.inner_fixed};
+}
+
+std::optional<TriangleFx> to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
+                                   const NumberFormat& fmt, const TessSettings& settings, bool with_tags) {
+  if (settings.kind == PatternKind::Uniform) return to_fixed(mesh, index, scaling, fmt, settings.L, with_tags);
+  const PatchFactors f = patch_factors(settings, mesh, index);
+  const D3D11Factors processed = d3d11_tri_factors(f.outer, f.inner, settings.partitioning);
+  if (processed.culled) return std::nullopt;
+  TriangleFx tri = to_fixed(mesh, index, scaling, fmt, 1, with_tags);
+  set_d3d11_pattern(tri, processed, settings.partitioning);
+  return tri;
+}
+
 glm::dvec3 position_from_fixed(const FxVec& pos, const HostScaling& scaling, const NumberFormat& fmt) {
   return scaling.from_unit(dequantize(pos, fmt));
 }

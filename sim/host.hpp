@@ -8,10 +8,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
 #include <cstddef>
 
 #include <glm/glm.hpp>
 
+#include "model/factors.hpp"
 #include "model/mesh.hpp"
 #include "sim/cpg.hpp"
 #include "sim/fixed.hpp"
@@ -44,6 +48,31 @@ glm::dvec3 dequantize(const FxVec& x, const NumberFormat& fmt);
 // vertex when σ exceeds the coordinate range.
 TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
                     const NumberFormat& fmt, int L, bool with_tags = false);
+
+// Gives the triangle the D3D11 pattern with factors `f` as the tessellator processes them
+// (d3d11_tri_factors: clamped, rounded, 16.16); pow2 travels as integer. `f` must not be culled:
+// a culled patch has no points and the host does not send it.
+void set_d3d11_pattern(TriangleFx& tri, const D3D11Factors& f, Partitioning partitioning);
+
+// Input triangle `index` with the pattern `settings` gives its patch: the uniform pattern with
+// settings.L, or the D3D11 pattern with the patch's factors (fixed or adaptive, model/factors.hpp).
+// std::nullopt when the factors cull the patch (an outer factor <= 0 or NaN): it is not sent.
+std::optional<TriangleFx> to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
+                                   const NumberFormat& fmt, const TessSettings& settings, bool with_tags = false);
+
+// The pattern of each triangle of a mesh run through the unit: one factor for all (the
+// configuration's L), one uniform factor per triangle, or the D3D11 pattern with fixed or
+// adaptive factors (model/factors.hpp), which the unit takes per patch.
+struct MeshPatterns {
+  std::span<const std::uint8_t> factors;  // uniform: one per triangle of the mesh, or empty
+  const TessSettings* d3d11 = nullptr;    // D3D11 settings (kept by reference), or none
+
+  MeshPatterns() = default;
+  MeshPatterns(std::span<const std::uint8_t> f) : factors(f) {}
+  MeshPatterns(const std::vector<std::uint8_t>& f) : factors(f) {}
+  MeshPatterns(const TessSettings* s) : d3d11(s && s->kind == PatternKind::D3D11 ? s : nullptr) {}
+  bool per_patch() const { return d3d11 || !factors.empty(); }
+};
 
 // Output vertex data back in the mesh's coordinates. The normal is normalized; a vanished
 // normal (all components zero) is returned as the zero vector and reported by the caller.

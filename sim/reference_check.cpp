@@ -48,7 +48,10 @@ PnInput dequantized_input(const TriangleFx& tri, const NumberFormat& fmt) {
 
 std::string describe(const VertexFx& x) {
   std::ostringstream os;
-  os << "patch " << x.id << " (j,k)=(" << x.j << "," << x.k << ") L=" << x.L << " pos=" << vec_str(x.pos)
+  os << "patch " << x.id;
+  if (x.L > 0) os << " (j,k)=(" << x.j << "," << x.k << ") L=" << x.L;
+  else os << " point " << x.index << " (ring " << x.j << ", edge " << x.k << ")";
+  os << " pos=" << vec_str(x.pos)
      << " nrm=" << vec_str(x.nrm) << " u=" << x.u << " v=" << x.v << (x.last ? " last" : "")
      << (x.flags ? " flags=" + std::to_string(x.flags) : "");
   return os.str();
@@ -70,7 +73,7 @@ double ArithmeticCheck::diagonal_of(const std::vector<TriangleFx>& stream, const
 }
 
 ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg,
-                                          std::span<const std::uint8_t> factors) {
+                                          MeshPatterns patterns) {
   glm::dvec3 lo(1e300), hi(-1e300);
   for (const glm::dvec3& p : mesh.positions) {
     const glm::dvec3 x = dequantize(quantize(scaling.to_unit(p), cfg.format), cfg.format);
@@ -79,8 +82,11 @@ ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& s
   }
   const double diagonal = mesh.positions.empty() ? 1.0 : std::max(glm::length(hi - lo), 1e-12);
   return ArithmeticCheck(
-      [&mesh, scaling, cfg, factors](std::uint32_t id) {
-        return to_fixed(mesh, id, scaling, cfg.format, factors.empty() ? cfg.tess_factor : factors[id], cfg.cpg_tags);
+      [&mesh, scaling, cfg, patterns](std::uint32_t id) {
+        // Only patches that produced vertices are looked up: never a culled one.
+        if (patterns.d3d11) return *to_fixed(mesh, id, scaling, cfg.format, *patterns.d3d11, cfg.cpg_tags);
+        return to_fixed(mesh, id, scaling, cfg.format,
+                        patterns.factors.empty() ? cfg.tess_factor : patterns.factors[id], cfg.cpg_tags);
       },
       diagonal, cfg);
 }
@@ -165,9 +171,12 @@ VertexErrors MeshErrors::add(const VertexFx& v) {
     patch_ = scalar_tagged_ ? make_stpn_patch(in, tags, cfg_.normals) : make_patch(in, cfg_.normals);
     patch_id_ = v.id;
   }
-  // The reference at the exact domain point, as `tessim tessellate` evaluates it.
+  // The reference at the exact domain point, as `tessim tessellate` evaluates it: (j/L, k/L) of
+  // the uniform pattern, the 16.16 point itself of a D3D11 pattern (L = 0; exact in B >= 16 bits).
   const double segments = static_cast<double>(v.L);
-  const PnVertex ref = eval_de_casteljau(patch_, v.j / segments, v.k / segments);
+  const PnVertex ref = v.L > 0 ? eval_de_casteljau(patch_, v.j / segments, v.k / segments)
+                               : eval_de_casteljau(patch_, std::ldexp(static_cast<double>(v.u), -cfg_.format.bary_bits),
+                                                   std::ldexp(static_cast<double>(v.v), -cfg_.format.bary_bits));
   const glm::dvec3 pos = position_from_fixed(v.pos, scaling_, cfg_.format);
   VertexErrors e;
   e.position = glm::length(pos - ref.position) / diagonal_;

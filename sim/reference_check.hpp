@@ -70,10 +70,10 @@ class ArithmeticCheck {
   // The bounding-box diagonal of a stream's dequantized positions.
   static double diagonal_of(const std::vector<TriangleFx>& stream, const NumberFormat& fmt);
   // The check of a whole mesh streamed with sim::MeshSource (each patch re-quantized on demand).
-  // `factors`: per triangle, or empty for cfg.tess_factor everywhere (as simulate() takes them).
-  // With cfg.cpg_tags the mesh's tags go along, as the unit receives them.
+  // `patterns`: as simulate() takes them. With cfg.cpg_tags the mesh's tags go along, as the
+  // unit receives them.
   static ArithmeticCheck for_mesh(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg,
-                                  std::span<const std::uint8_t> factors = {});
+                                  MeshPatterns patterns = {});
 
  private:
   TriangleLookup triangle_;

@@ -5,11 +5,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "model/error.hpp"
 #include "model/pattern.hpp"
 #include "sim/analytic.hpp"
 #include "sim/chunked.hpp"
@@ -58,27 +60,59 @@ Timeline::Bucket run_totals(const Unit& unit, const Gpe& gpe) {
 
 WorkloadFactors workload_factors(const MeshSource& source) {
   WorkloadFactors w;
+  const TessSettings* d3d11 = source.patterns().d3d11;
+  if (d3d11) {
+    w.uniform = false;
+    w.pattern = d3d11->describe();
+  }
   for (std::uint64_t t = source.first(); t < source.end(); ++t) {
+    const int points = source.patch_points(t);
+    if (points == 0) {
+      ++w.culled;
+      continue;
+    }
+    ++w.patches_with_vertices[points];
+    w.vertices += static_cast<std::uint64_t>(points);
+    if (d3d11) continue;
     const int L = source.factor(t);
     ++w.patches_with_factor[static_cast<std::size_t>(L)];
-    w.vertices += static_cast<std::uint64_t>(pattern_vertex_count(L));
     if (L != source.factor(source.first())) w.uniform = false;
   }
   return w;
 }
 
+// The triangles of D3D11 patterns, built once per distinct set of factors (an adaptive mesh has
+// a few hundred), for the patches handed to SimHooks::on_patch.
+class TopologyCache {
+ public:
+  std::span<const std::uint32_t> indices(const TriangleFx& tri) {
+    const std::array<std::int32_t, 5> key{static_cast<std::int32_t>(tri.pattern), tri.factors[0], tri.factors[1],
+                                          tri.factors[2], tri.factors[3]};
+    auto it = cache_.find(key);
+    if (it == cache_.end()) it = cache_.emplace(key, d3d11_pattern(tri_setup(tri)).indices).first;
+    return it->second;
+  }
+
+ private:
+  std::map<std::array<std::int32_t, 5>, std::vector<std::uint32_t>> cache_;
+};
+
 }  // namespace
 
-SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks,
-                   std::span<const std::uint8_t> factors) {
-  return simulate_range(mesh, cfg, 0, mesh.triangle_count(), hooks, factors);
+SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks, MeshPatterns patterns) {
+  return simulate_range(mesh, cfg, 0, mesh.triangle_count(), hooks, patterns);
 }
 
 SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
-                         const SimHooks& hooks, std::span<const std::uint8_t> factors) {
+                         const SimHooks& hooks, MeshPatterns patterns) {
+  const std::span<const std::uint8_t> factors = patterns.factors;
   if (!factors.empty() && factors.size() != mesh.triangle_count())
     throw std::logic_error("simulate: " + std::to_string(factors.size()) + " factors for " +
                            std::to_string(mesh.triangle_count()) + " triangles");
+  if (patterns.d3d11 && cfg.format.bary_bits < 16)
+    throw InputError("configuration", "bary_bits",
+                     "the D3D11 pattern's points are 16.16: it needs bary_bits >= 16, not " +
+                         std::to_string(cfg.format.bary_bits));
   if (first > end || end > mesh.triangle_count())
     throw std::logic_error("simulate: triangles " + std::to_string(first) + ".." + std::to_string(end) +
                            " of a mesh of " + std::to_string(mesh.triangle_count()));
@@ -91,13 +125,31 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   r.scaling = host_scaling(mesh);
 
   Unit unit(cfg);
-  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, factors, cfg.cpg_tags, first, end);
+  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, patterns, cfg.cpg_tags, first, end);
   BasicTestbench<MeshSource> tb(source, cfg);
   r.cpg_cycles = unit.cpg_cycles();
   r.factors = workload_factors(source);
   const NumberFormat& fmt = cfg.format;
-  int L = r.triangles ? source.factor(first) : cfg.tess_factor;  // of the patch expected next
-  int patch_vertices = pattern_vertex_count(L);
+  const bool d3d11 = patterns.d3d11 != nullptr;
+  TopologyCache topology;
+  // The patch expected next: its id (the next triangle not culled), L (0: D3D11), vertices and,
+  // for D3D11 patches handed to on_patch, its triangles.
+  auto expect_id = static_cast<std::uint32_t>(first);
+  int L = cfg.tess_factor, patch_vertices = 0;
+  std::span<const std::uint32_t> patch_indices;
+  auto expect_patch = [&](std::uint64_t from) {
+    for (; from < end; ++from) {
+      const int points = source.patch_points(from);
+      if (points == 0) continue;
+      expect_id = static_cast<std::uint32_t>(from);
+      patch_vertices = points;
+      L = d3d11 ? 0 : source.factor(from);
+      if (d3d11 && hooks.on_patch) patch_indices = topology.indices(*source.triangle(from));
+      return;
+    }
+    expect_id = static_cast<std::uint32_t>(end);
+  };
+  expect_patch(first);
   const std::uint64_t total = source.vertices();
   // A tagged triangle keeps the CPG longer: the watchdog allows for three tagged corners.
   TriangleFx all_tagged;
@@ -107,7 +159,8 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
 
   std::vector<glm::dvec3> patch_pos, patch_nrm;
   if (hooks.on_patch) {
-    const int largest = pattern_vertex_count(factors.empty() ? cfg.tess_factor : kMaxTessFactor);
+    const int largest = d3d11 ? d3d11_setup(d3d11_tri_factors({64.0f, 64.0f, 64.0f}, 64.0f, Partitioning::integer)).point_count
+                              : pattern_vertex_count(factors.empty() ? cfg.tess_factor : kMaxTessFactor);
     patch_pos.resize(static_cast<std::size_t>(largest));
     patch_nrm.resize(static_cast<std::size_t>(largest));
   }
@@ -116,12 +169,11 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   std::optional<ArithmeticCheck> arithmetic;
   if (hooks.measure_errors) {
     mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags);
-    arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, factors));
+    arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, patterns));
   }
 
   // Expected next vertex: the stream is checked as it goes (patch order, pattern order), so a
   // model bug shows up as an internal error instead of a wrong mesh.
-  auto expect_id = static_cast<std::uint32_t>(first);
   int expect_index = 0;
   std::uint64_t accepted = 0;
   std::uint64_t last_progress = 0;
@@ -161,8 +213,8 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
     const GpeCycle& g = tb.gpe_cycle();
     if (g.accepted) {
       const VertexFx& v = unit.vtx();
-      if (v.id != expect_id || pattern_index(v.j, v.k, v.L) != expect_index || v.L != L ||
-          v.last != (expect_index == patch_vertices - 1))
+      if (v.id != expect_id || v.index != expect_index || v.L != L ||
+          (L > 0 && pattern_index(v.j, v.k, v.L) != expect_index) || v.last != (expect_index == patch_vertices - 1))
         throw std::logic_error("cycle model: vertex (" + std::to_string(v.id) + ", " +
                                std::to_string(v.j) + ", " + std::to_string(v.k) +
                                ") out of order at cycle " + std::to_string(cycle));
@@ -181,17 +233,13 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
         patch_nrm[static_cast<std::size_t>(expect_index)] = normal_from_fixed(v.nrm, fmt);
         if (v.last) {
           const auto n = static_cast<std::size_t>(patch_vertices);
-          hooks.on_patch(PatchOut{v.id, L, {patch_pos.data(), n}, {patch_nrm.data(), n}});
+          hooks.on_patch(PatchOut{v.id, L, {patch_pos.data(), n}, {patch_nrm.data(), n}, patch_indices});
         }
       }
       if (v.last) {
         if (hooks.cancel && hooks.cancel->load(std::memory_order_relaxed)) throw SimCancelled();
-        ++expect_id;
         expect_index = 0;
-        if (expect_id < end) {
-          L = source.factor(expect_id);
-          patch_vertices = pattern_vertex_count(L);
-        }
+        expect_patch(std::uint64_t{expect_id} + 1);
       } else {
         ++expect_index;
       }
@@ -307,18 +355,14 @@ int vertex_bucket(int vertices) { return std::bit_width(static_cast<unsigned>(ve
 
 nlohmann::json workload_json(const WorkloadFactors& w, std::uint64_t triangles) {
   std::array<std::uint64_t, kVertexBuckets> histogram{};
-  int min_v = 0, max_v = 0;
-  for (int L = 1; L <= kMaxTessFactor; ++L) {
-    const std::uint64_t n = w.patches_with_factor[static_cast<std::size_t>(L)];
-    if (n == 0) continue;
-    const int v = pattern_vertex_count(L);
-    histogram[static_cast<std::size_t>(vertex_bucket(v))] += n;
-    if (min_v == 0) min_v = v;
-    max_v = v;
-  }
+  for (const auto& [v, n] : w.patches_with_vertices) histogram[static_cast<std::size_t>(vertex_bucket(v))] += n;
+  const int min_v = w.patches_with_vertices.empty() ? 0 : w.patches_with_vertices.begin()->first;
+  const int max_v = w.patches_with_vertices.empty() ? 0 : w.patches_with_vertices.rbegin()->first;
   return {{"factors", w.uniform ? "uniform" : "per patch"},
+          {"pattern", w.pattern.empty() ? "uniform" : w.pattern},
+          {"culled_patches", w.culled},
           {"vertices_per_patch",
-           {{"min", min_v}, {"mean", ratio(w.vertices, triangles)}, {"max", max_v}}},
+           {{"min", min_v}, {"mean", ratio(w.vertices, triangles - w.culled)}, {"max", max_v}}},
           {"vertices_per_patch_log2_histogram", histogram}};
 }
 
@@ -328,7 +372,7 @@ nlohmann::json analytic_of(const SimResult& r) {
   if (r.factors.uniform) return analytic_json(predict(r.config, cpg_c), r.config, r.triangles);
   const AnalyticPrediction p = predict(r.config, cpg_c, ratio(r.factors.vertices, r.triangles));
   nlohmann::json j = analytic_json(p, r.config, r.triangles);
-  const VaryingWorkloadBounds b = varying_bounds(p, r.factors.patches_with_factor);
+  const VaryingWorkloadBounds b = varying_bounds(p, r.factors.patches_with_vertices);
   const auto v = static_cast<double>(r.factors.vertices);
   j["varying"] = {{"no_buffer_cycles", b.no_buffer_cycles},
                   {"full_buffer_cycles", b.full_buffer_cycles},
@@ -363,6 +407,7 @@ nlohmann::json stats_units() {
       {"limit.gpe_waited", kCycles},
       {"warnings.degenerate_patches", "patches"},
       {"warnings.zero_normals", "vertices"},
+      {"workload.culled_patches", "patches"},
       {"workload.vertices_per_patch.min", "vertices"},
       {"workload.vertices_per_patch.mean", "vertices"},
       {"workload.vertices_per_patch.max", "vertices"},
@@ -509,7 +554,14 @@ std::string summary(const SimResult& r) {
       << ratio(r.cpg_tag_cycles, r.triangles) << " per triangle)";
   s << "\n";
   std::string factors;
-  if (r.factors.uniform) {
+  if (!r.factors.pattern.empty()) {
+    const int lo = r.factors.patches_with_vertices.empty() ? 0 : r.factors.patches_with_vertices.begin()->first;
+    const int hi = r.factors.patches_with_vertices.empty() ? 0 : r.factors.patches_with_vertices.rbegin()->first;
+    std::snprintf(buf, sizeof buf, "D3D11 pattern %s, %d..%d vertices/patch (%.1f on average)",
+                  r.factors.pattern.c_str(), lo, hi, ratio(r.factors.vertices, r.triangles - r.factors.culled));
+    if (r.factors.culled) std::snprintf(buf + std::strlen(buf), sizeof buf - std::strlen(buf), ", %llu culled",
+                                        static_cast<unsigned long long>(r.factors.culled));
+  } else if (r.factors.uniform) {
     const int L = r.triangles ? static_cast<int>(std::find_if(r.factors.patches_with_factor.begin() + 1,
                                                               r.factors.patches_with_factor.end(),
                                                               [](std::uint64_t n) { return n > 0; }) -

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -38,9 +39,10 @@ class CycleObserver {
 // One finished patch, converted back into the mesh's coordinates (normals normalized).
 struct PatchOut {
   std::uint32_t triangle = 0;
-  int L = 1;
-  std::span<const glm::dvec3> positions;  // pattern order, pattern_vertex_count(L) entries
+  int L = 1;                              // the uniform pattern's factor; 0: a D3D11 pattern
+  std::span<const glm::dvec3> positions;  // pattern order
   std::span<const glm::dvec3> normals;
+  std::span<const std::uint32_t> indices;  // D3D11: the pattern's triangles (local indices, ccw)
 };
 
 struct SimHooks {
@@ -70,9 +72,12 @@ struct SimErrors {
 
 // The per-patch load of a run: the factors of its patches and the vertices they make.
 struct WorkloadFactors {
-  bool uniform = true;  // every patch has the configuration's factor
-  std::array<std::uint64_t, kMaxTessFactor + 1> patches_with_factor{};  // index L
+  bool uniform = true;  // every patch has the configuration's factor (uniform pattern)
+  std::array<std::uint64_t, kMaxTessFactor + 1> patches_with_factor{};  // uniform pattern: index L
+  std::map<int, std::uint64_t> patches_with_vertices;  // vertices per patch -> patches
   std::uint64_t vertices = 0;
+  std::uint64_t culled = 0;  // D3D11 patches their factors cull: never sent to the unit
+  std::string pattern;       // D3D11: the settings (TessSettings::describe); empty: uniform
 };
 
 struct SimResult {
@@ -105,15 +110,15 @@ struct SimResult {
 // a mesh the host cannot convert (check_convertible) or when a patch saturates (the widths
 // cannot hold the mesh). A vertex beyond the arithmetic error bound is reported in
 // SimResult::errors, not thrown: it is a finding about the widths, not bad input.
-// `factors`: one per triangle of the mesh (an adaptive workload, model/factors.hpp); empty:
-// cfg.tess_factor for every triangle.
+// `patterns`: one uniform factor per triangle of the mesh, or the D3D11 pattern with fixed or
+// adaptive factors (model/factors.hpp); empty: cfg.tess_factor for every triangle.
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks = {},
-                   std::span<const std::uint8_t> factors = {});
+                   MeshPatterns patterns = {});
 // The same for the triangles [first, end) of the mesh alone, on a unit fresh from reset (a chunk
 // of a chunked run): ids and factors stay those of the whole mesh, the scaling is the mesh's, so
 // every vertex is the one simulate() makes of that triangle. SimResult::triangles = end - first.
 SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
-                         const SimHooks& hooks = {}, std::span<const std::uint8_t> factors = {});
+                         const SimHooks& hooks = {}, MeshPatterns patterns = {});
 
 // Figures derived from the statistics (docs/microarchitecture.md §10).
 double throughput(const SimResult& r);         // vertices per cycle

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -31,7 +32,7 @@ class VectorSource {
   void pop() { ++next_; }
   std::uint64_t vertices() const {
     std::uint64_t n = 0;
-    for (const TriangleFx& t : stream_) n += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
+    for (const TriangleFx& t : stream_) n += static_cast<std::uint64_t>(patch_vertex_count(t));
     return n;
   }
 
@@ -41,46 +42,69 @@ class VectorSource {
 };
 
 // The triangles of a mesh, scaled and quantized one at a time as they are offered (streaming:
-// nothing per triangle is held but its factor), all with factor L or each with its own. A range
+// nothing per triangle is held but its factor), each with its pattern (MeshPatterns). A range
 // [first, end) of the mesh's triangles streams only those (a chunk of a chunked run); their ids
-// stay their indices in the mesh.
+// stay their indices in the mesh. A patch its D3D11 factors cull is not offered.
 class MeshSource {
  public:
-  // `factors`: one per triangle of the mesh (empty: L for every triangle); kept by reference.
   // `with_tags`: the mesh's scalar tags go along (a CPG that takes them, cpg_tags).
   MeshSource(const Mesh& mesh, const HostScaling& scaling, const NumberFormat& format, int L,
-             std::span<const std::uint8_t> factors = {}, bool with_tags = false, std::size_t first = 0,
+             MeshPatterns patterns = {}, bool with_tags = false, std::size_t first = 0,
              std::size_t end = SIZE_MAX)
-      : mesh_(mesh), scaling_(scaling), format_(format), L_(L), factors_(factors), with_tags_(with_tags),
+      : mesh_(mesh), scaling_(scaling), format_(format), L_(L), patterns_(patterns), with_tags_(with_tags),
         first_(first), end_(std::min(end, mesh.triangle_count())) {
     rewind();
   }
-  int factor(std::size_t t) const { return factors_.empty() ? L_ : factors_[t]; }
+  int factor(std::size_t t) const { return patterns_.factors.empty() ? L_ : patterns_.factors[t]; }
+  const MeshPatterns& patterns() const { return patterns_; }
   std::size_t first() const { return first_; }
   std::size_t end() const { return end_; }
+  // Triangle t as the unit receives it; std::nullopt when its factors cull it.
+  std::optional<TriangleFx> triangle(std::size_t t) const {
+    if (patterns_.d3d11) return to_fixed(mesh_, t, scaling_, format_, *patterns_.d3d11, with_tags_);
+    return to_fixed(mesh_, t, scaling_, format_, factor(t), with_tags_);
+  }
+  // Points of triangle t's pattern (0: culled), from its factors alone.
+  int patch_points(std::size_t t) const {
+    if (!patterns_.d3d11) return pattern_vertex_count(factor(t));
+    const PatchFactors f = patch_factors(*patterns_.d3d11, mesh_, t);
+    const D3D11Factors processed = d3d11_tri_factors(f.outer, f.inner, patterns_.d3d11->partitioning);
+    return processed.culled ? 0 : d3d11_setup(processed).point_count;
+  }
   void rewind() {
     next_ = first_;
-    if (available()) current_ = to_fixed(mesh_, next_, scaling_, format_, factor(next_), with_tags_);
+    load();
   }
   bool available() const { return next_ < end_; }
   const TriangleFx& front() const { return current_; }
   void pop() {
-    if (++next_ < end_) current_ = to_fixed(mesh_, next_, scaling_, format_, factor(next_), with_tags_);
+    ++next_;
+    load();
   }
   std::uint64_t vertices() const {
     if (first_ >= end_) return 0;
-    if (factors_.empty()) return (end_ - first_) * static_cast<std::uint64_t>(pattern_vertex_count(L_));
+    if (!patterns_.per_patch()) return (end_ - first_) * static_cast<std::uint64_t>(pattern_vertex_count(L_));
     std::uint64_t n = 0;
-    for (std::size_t t = first_; t < end_; ++t) n += static_cast<std::uint64_t>(pattern_vertex_count(factors_[t]));
+    for (std::size_t t = first_; t < end_; ++t) n += static_cast<std::uint64_t>(patch_points(t));
     return n;
   }
 
  private:
+  // The triangle at next_, or the first one after it that is not culled.
+  void load() {
+    for (; next_ < end_; ++next_) {
+      if (std::optional<TriangleFx> tri = triangle(next_)) {
+        current_ = *tri;
+        return;
+      }
+    }
+  }
+
   const Mesh& mesh_;
   HostScaling scaling_;
   NumberFormat format_;
   int L_;
-  std::span<const std::uint8_t> factors_;
+  MeshPatterns patterns_;
   bool with_tags_ = false;
   std::size_t first_ = 0, end_ = 0;
   std::size_t next_ = 0;

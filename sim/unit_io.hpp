@@ -19,7 +19,8 @@ struct VertexFx {
   FxVec nrm{};            // unnormalized (2 n(u,v) for quadratic/reflect, linear field otherwise)
   std::int64_t u = 0;     // barycentric weights, B fraction bits
   std::int64_t v = 0;
-  int j = 0, k = 0, L = 0;  // lattice point and factor
+  int j = 0, k = 0, L = 0;  // uniform pattern: lattice point and factor; D3D11: ring, edge, 0
+  int index = 0;            // position in the patch's pattern order
   std::uint32_t id = 0;   // patch id from the input triangle
   bool last = false;      // last vertex of its patch
   std::uint8_t flags = 0; // FxFlag bits of the patch's control points
@@ -34,7 +35,7 @@ struct VertexField {
   int count;
   std::int64_t (*get)(const VertexFx&, int component);
 };
-inline constexpr std::array<VertexField, 10> kVertexFields{{
+inline constexpr std::array<VertexField, 11> kVertexFields{{
     {"vtx_pos", 3, [](const VertexFx& x, int c) -> std::int64_t { return x.pos[static_cast<std::size_t>(c)]; }},
     {"vtx_nrm", 3, [](const VertexFx& x, int c) -> std::int64_t { return x.nrm[static_cast<std::size_t>(c)]; }},
     {"vtx_u", 1, [](const VertexFx& x, int) -> std::int64_t { return x.u; }},
@@ -42,6 +43,7 @@ inline constexpr std::array<VertexField, 10> kVertexFields{{
     {"vtx_j", 1, [](const VertexFx& x, int) -> std::int64_t { return x.j; }},
     {"vtx_k", 1, [](const VertexFx& x, int) -> std::int64_t { return x.k; }},
     {"vtx_l", 1, [](const VertexFx& x, int) -> std::int64_t { return x.L; }},
+    {"vtx_index", 1, [](const VertexFx& x, int) -> std::int64_t { return x.index; }},
     {"vtx_id", 1, [](const VertexFx& x, int) -> std::int64_t { return x.id; }},
     {"vtx_last", 1, [](const VertexFx& x, int) -> std::int64_t { return x.last; }},
     {"vtx_flags", 1, [](const VertexFx& x, int) -> std::int64_t { return x.flags; }},

@@ -185,6 +185,7 @@ class VerilatedUnit final : public RtlUnit {
     v.j = static_cast<int>(model_->vtx_j_o);
     v.k = static_cast<int>(model_->vtx_k_o);
     v.L = static_cast<int>(model_->vtx_l_o);
+    v.index = static_cast<int>(model_->vtx_index_o);
     v.id = static_cast<std::uint32_t>(model_->vtx_id_o);
     v.last = model_->vtx_last_o != 0;
     v.flags = static_cast<std::uint8_t>(model_->vtx_flags_o);
@@ -232,6 +233,9 @@ class VerilatedUnit final : public RtlUnit {
       detail::put_bits(model_->tri_tags_i, (6 * v + 5) * w, w, static_cast<std::uint64_t>(t.beta));
     }
     model_->tri_l_i = static_cast<CData>(in.tri.L & 0x7f);
+    model_->tri_pattern_i = static_cast<CData>(static_cast<unsigned>(in.tri.pattern) & 3);
+    for (int e = 0; e < 4; ++e)
+      detail::put_bits(model_->tri_factors_i, 23 * e, 23, static_cast<std::uint64_t>(in.tri.factors[e]) & 0x7fffff);
     model_->tri_id_i = in.tri.id;
     model_->vtx_ready_i = in.vtx_ready ? 1 : 0;
     model_->eval();

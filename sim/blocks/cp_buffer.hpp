@@ -18,6 +18,8 @@ class ControlPointBuffer {
     ControlPointsFx cp;
     State state = State::Empty;
     int L = 1;
+    TriPattern pattern = TriPattern::uniform;
+    D3D11Setup d3d11;  // D3D11 patterns: the walk set up from the factors while the CPG ran
     std::uint32_t id = 0;
   };
 

@@ -104,6 +104,8 @@ class CpgBlock {
         ControlPointBuffer::Entry& e = buffers.write_slot();
         e.cp = compute_control_points(latch_, normals_, format_);
         e.L = latch_.L;
+        e.pattern = latch_.pattern;
+        if (latch_.pattern != TriPattern::uniform) e.d3d11 = tri_setup(latch_);
         e.id = latch_.id;
         buffers.commit_write();
         busy_ = false;

@@ -256,13 +256,14 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     int tail = head_start + count_start;
     if (tail >= n_contexts_) tail -= n_contexts_;
     Context& ctx = contexts_[static_cast<std::size_t>(tail)];
-    const DpgPoint p = dpg_.point(buf.L);
+    const DpgPoint p = dpg_.point(buf);
     // pos and nrm are written at retirement.
     ctx.tag.u = p.u;
     ctx.tag.v = p.v;
     ctx.tag.j = p.j;
     ctx.tag.k = p.k;
-    ctx.tag.L = buf.L;
+    ctx.tag.L = buf.pattern == TriPattern::uniform ? buf.L : 0;
+    ctx.tag.index = p.index;
     ctx.tag.id = buf.id;
     ctx.tag.last = p.last;
     ctx.tag.flags = buf.cp.flags;
@@ -274,7 +275,7 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     if (ctx.ready != 0) ready_slots_ |= std::uint32_t{1} << tail;
     ctx.seq = next_seq_++;
     if (allocated_seq) *allocated_seq = ctx.seq;
-    dpg_.consume(buf.L);
+    dpg_.consume(buf);
     if (p.last) buffers.drain();
   }
   count_ = count_start + (allocate ? 1 : 0) - (retire_into ? 1 : 0);

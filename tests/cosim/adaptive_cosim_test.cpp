@@ -1,6 +1,7 @@
 // An adaptive workload (docs/patterns.md §7) through the RTL and the cycle model in lock-step:
-// every triangle of a real mesh with its own factor from the camera, for every normal mode the
-// unit implements, N = 1..4, with random backpressure.
+// every triangle of a real mesh with its own D3D11 factors from the camera, which the unit
+// takes per patch, for every partitioning, N = 1..4, every normal mode the unit implements,
+// with random backpressure.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -15,54 +16,59 @@
 namespace tessim::cosim {
 namespace {
 
-std::vector<sim::TriangleFx> adaptive_stream(const sim::NumberFormat& fmt, std::set<int>* factors) {
+std::vector<sim::TriangleFx> adaptive_stream(const sim::NumberFormat& fmt, Partitioning p, std::set<int>* sizes) {
   const Mesh mesh = load_mesh("/usr/share/assimp/models/STL/sphereWithHole.stl");
   TessSettings s;
   s.kind = PatternKind::D3D11;
   s.source = FactorSource::Adaptive;
-  // Close to one side of the sphere: near triangles get factors up to the maximum.
+  s.partitioning = p;
+  // Close to one side of the sphere: near triangles get large factors, far ones small.
   const BoundingBox box = bounding_box(mesh);
   s.camera.eye = box.center() + glm::dvec3(0.0, 0.0, 0.9 * box.diagonal());
   s.camera.target = box.center();
-  s.pixels_per_segment = 6.0;
-  const std::vector<std::uint8_t> L = uniform_factors_covering(s, mesh);
+  s.pixels_per_segment = 12.0;
   const sim::HostScaling scaling = sim::host_scaling(mesh);
   std::vector<sim::TriangleFx> stream;
   for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-    stream.push_back(sim::to_fixed(mesh, i, scaling, fmt, L[i]));
-    factors->insert(L[i]);
+    const std::optional<sim::TriangleFx> tri = sim::to_fixed(mesh, i, scaling, fmt, s);
+    EXPECT_TRUE(tri.has_value()) << "adaptive factors never cull";
+    if (!tri) continue;
+    stream.push_back(*tri);
+    sizes->insert(sim::patch_vertex_count(*tri));
   }
   return stream;
 }
 
-class AdaptiveCosim : public ::testing::TestWithParam<std::tuple<int, NormalMode>> {};
+constexpr NormalMode kModes[] = {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear};
+
+class AdaptiveCosim : public ::testing::TestWithParam<std::tuple<int, Partitioning>> {};
 
 TEST_P(AdaptiveCosim, AgreesOnEveryCycle) {
-  const auto [n, mode] = GetParam();
+  const auto [n, partitioning] = GetParam();
   CosimOptions o;
   o.unit.int_blocks = n;
-  o.unit.normals = mode;
+  o.unit.normals = kModes[(n + static_cast<int>(partitioning)) % 3];
   o.unit.gpe_cycles = 2;
   o.unit.gpe_stall_prob = 0.25;
   o.unit.seed = 11;
   o.seed = 11;
   o.variant = std::string(1, 'n').append(std::to_string(n));
-  std::set<int> factors;
-  const std::vector<sim::TriangleFx> stream = adaptive_stream(o.unit.format, &factors);
-  ASSERT_GT(factors.size(), 5u) << "the camera should give many different factors";
+  std::set<int> sizes;
+  const std::vector<sim::TriangleFx> stream = adaptive_stream(o.unit.format, partitioning, &sizes);
+  // pow2 rounds the factors to 1, 2, 4, ..., 64: fewer sizes than the other partitionings.
+  ASSERT_GE(sizes.size(), 4u) << "the camera should give patches of many sizes";
   const CosimReport r = run_cosim(stream, o);
   EXPECT_TRUE(r.passed) << format_report(r, o);
   EXPECT_EQ(r.triangles, stream.size());
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    NAndModes, AdaptiveCosim,
+    NAndPartitionings, AdaptiveCosim,
     ::testing::Combine(::testing::Values(1, 2, 3, 4),
-                       ::testing::Values(NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear)),
+                       ::testing::Values(Partitioning::integer, Partitioning::pow2, Partitioning::fractional_odd,
+                                         Partitioning::fractional_even)),
     [](const auto& info) {
-      std::string name(1, 'N');
-      name.append(std::to_string(std::get<0>(info.param))).append(1, '_').append(to_string(std::get<1>(info.param)));
-      return name;
+      return "N" + std::to_string(std::get<0>(info.param)) + "_" + partitioning_name(std::get<1>(info.param));
     });
 
 }  // namespace

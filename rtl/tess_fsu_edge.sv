@@ -1,0 +1,72 @@
+// One factor's edge setup (docs/microarchitecture.md §7; model/d3d11_pattern.cpp d3d11_edge):
+// how a D3D11 factor spreads its points along a unit edge. From the half factor
+// H = (F + 2^-16) / 2 (plus 1/2 when odd) come the points per half edge ceil(H), the split
+// point (ruler order: the top bit of floor(H) cleared), the segment counts of floor(H) and
+// ceil(H) and their 16.16 reciprocals from a 64-entry table, and the blend's two weights
+// R(n_floor)(1 - phi), R(n_ceil) phi, so that a point costs the DPG two small multiplies.
+module tess_fsu_edge (
+  input  logic [tess_pkg::FixBits-1:0]  factor_i,  // 16.16, 1..64
+  input  logic                          odd_i,
+  output logic [tess_pkg::EdgeBits-1:0] edge_o     // {points, cw, fw, split, half points, odd}
+);
+
+  localparam int unsigned FW = tess_pkg::FixBits;
+
+  logic [FW-1:0] half0, half, floor_half, ceil_half;
+  logic [15:0]   phi;
+  assign half0      = FW'(({1'b0, factor_i} + (FW + 1)'(1)) >> 1);
+  // An even factor of 1 is handled as an odd one: half a segment cannot be centred.
+  assign half       = (odd_i || half0 == FW'(32'h8000)) ? half0 + FW'(32'h8000) : half0;
+  assign phi        = half[15:0];
+  assign floor_half = {half[FW-1:16], 16'h0};
+  assign ceil_half  = (phi != '0) ? floor_half + FW'(32'h10000) : half;
+
+  logic [5:0] half_points, floor_int, split, wo_msb_in, wo_msb;
+  assign half_points = ceil_half[21:16];  // <= 33
+  assign floor_int   = floor_half[21:16];
+  assign wo_msb_in   = odd_i ? floor_int - 6'd1 : floor_int;
+  // Highest set bit cleared (0 stays 0).
+  always_comb begin
+    wo_msb = wo_msb_in;
+    for (int b = 0; b < 6; b++) begin
+      if ({1'b0, wo_msb_in} >= (7'd1 << b) && {1'b0, wo_msb_in} < (7'd1 << (b + 1))) wo_msb[b] = 1'b0;
+    end
+  end
+  always_comb begin
+    if (phi == '0) split = half_points + 6'd1;  // no split: never reached
+    else if (odd_i && floor_half == FW'(32'h10000)) split = '0;
+    else split = {wo_msb[4:0], 1'b1};
+  end
+
+  logic [6:0] floor_segments, ceil_segments;
+  assign floor_segments = {floor_int, 1'b0} - 7'(odd_i);
+  assign ceil_segments  = {half_points, 1'b0} - 7'(odd_i);
+
+  // R(n) = round(2^16 / n) for n = 1..64 (0 otherwise: never used).
+  logic [16:0] inv_floor, inv_ceil;
+  always_comb begin
+    inv_floor = '0;
+    inv_ceil  = '0;
+    for (int n = 1; n <= tess_pkg::MaxFactor; n++) begin
+      if (floor_segments == 7'(n)) inv_floor = 17'((32'h10000 + n / 2) / n);
+      if (ceil_segments == 7'(n)) inv_ceil = 17'((32'h10000 + n / 2) / n);
+    end
+  end
+
+  logic [16:0] one_minus_phi;
+  logic [32:0] floor_weight, ceil_weight;
+  assign one_minus_phi = 17'h10000 - {1'b0, phi};
+  assign floor_weight = 33'(inv_floor) * 33'(one_minus_phi);
+  assign ceil_weight  = 33'(inv_ceil) * 33'(phi);
+
+  logic [6:0] points;
+  assign points = {half_points, 1'b0} + 7'(!odd_i);
+
+  assign edge_o = {points, ceil_weight, floor_weight, split, half_points, odd_i};
+
+  // ceil_half's fraction is floor_half's (zero); bit 22 is never set (H <= 33); the split
+  // takes the cleared value's low five bits (floor(H) <= 32).
+  logic unused_bits;
+  assign unused_bits = ^{ceil_half[FW-1], ceil_half[15:0], wo_msb[5]};
+
+endmodule
