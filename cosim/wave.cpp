@@ -122,6 +122,8 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   bit(top + "tri_ready_o");
   dec(top + "tri_id_i", 32);
   dec(top + "tri_l_i", 7);
+  dec(top + "tri_pattern_i", 2);
+  hex(top + "tri_factors_i", 4 * 23);
   dec(unit + "u_tri_fifo.count_q", clog2(static_cast<std::uint64_t>(hw.tri_fifo_depth) + 1));
   group("CPG");
   bit(unit + "u_cpg.accept");
@@ -135,6 +137,11 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   dec(unit + "u_cpbuf.state_q[1]", 2);
   bit(unit + "u_cpbuf.wr_ptr_q");
   bit(unit + "u_cpbuf.rd_ptr_q");
+  group("DPG (D3D11 walk: ring, edge, position)");
+  dec(unit + "u_te.u_dpg.index_q", 12);
+  dec(unit + "u_te.u_dpg.ring_q", 6);
+  dec(unit + "u_te.u_dpg.edge_q", 2);
+  dec(unit + "u_te.u_dpg.p_q", 7);
   group("TE");
   dec(unit + "u_te.count_q", te_count);
   dec(unit + "u_te.head_q", te_index);
@@ -150,6 +157,7 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   dec(top + "vtx_j_o", 7);
   dec(top + "vtx_k_o", 7);
   dec(top + "vtx_l_o", 7);
+  dec(top + "vtx_index_o", 12);
   bit(top + "vtx_last_o");
   hex(top + "vtx_u_o", B + 1);
   hex(top + "vtx_v_o", B + 1);

@@ -62,19 +62,6 @@ PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::
   return f;
 }
 
-int uniform_factor_covering(const PatchFactors& f) {
-  const float largest = std::max({f.outer[0], f.outer[1], f.outer[2], f.inner});
-  if (!(largest >= 1.0f)) return 1;  // NaN or below 1
-  return static_cast<int>(std::min(std::ceil(largest), static_cast<float>(kMaxTessFactor)));
-}
-
-std::vector<std::uint8_t> uniform_factors_covering(const TessSettings& settings, const Mesh& mesh) {
-  std::vector<std::uint8_t> out(mesh.triangle_count());
-  for (std::size_t t = 0; t < out.size(); ++t)
-    out[t] = static_cast<std::uint8_t>(uniform_factor_covering(patch_factors(settings, mesh, t)));
-  return out;
-}
-
 void validate(const TessSettings& s, const std::string& source) {
   if (s.kind == PatternKind::Uniform) {
     if (s.L < 1 || s.L > kMaxTessFactor)

@@ -66,15 +66,6 @@ float adaptive_edge_factor(const ScreenCamera& camera, double pixels_per_segment
 // 1 and 2), inner = the largest outer factor (the interior as fine as the finest edge).
 PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::size_t t);
 
-// The factor of the unit's uniform pattern that serves a patch with these factors: the largest
-// one rounded up (what the integer partitioning does), 1..64. The unit does not generate the
-// D3D11 pattern yet; this puts the same per-patch load on it — as many or more segments per
-// edge — though not a crack-free surface (neighbours may get different factors).
-int uniform_factor_covering(const PatchFactors& f);
-
-// uniform_factor_covering() of every triangle of the mesh.
-std::vector<std::uint8_t> uniform_factors_covering(const TessSettings& settings, const Mesh& mesh);
-
 // Throws InputError(source, element, reason) for settings out of range: L outside 1..64, a
 // camera whose eye is its target, a field of view outside (0, 180), a viewport or pixels per
 // segment that is not positive. Every fixed factor is valid: the tessellator clamps it, and one

@@ -47,6 +47,11 @@ STIMULUS = [
                                    "--gpe-cycles", "1"] + N3),
     ("random linear N=1 K=1", ["--random", "40", "--random-max-L", "6", "--normals", "linear", "--gpe-cycles", "1",
                                "--variant", "n1", "--int", "1"]),
+    # The D3D11 pattern: random factors, a partitioning drawn per triangle, and one partitioning on N = 1.
+    ("random D3D11 mixed N=3 stall", ["--random", "40", "--random-max-L", "10", "--partitioning", "mixed",
+                                      "--stall", "0.3", "--gpe-cycles", "2"] + N3),
+    ("random D3D11 fractional_odd N=1", ["--random", "40", "--random-max-L", "12", "--partitioning",
+                                         "fractional_odd", "--gpe-cycles", "1", "--variant", "n1", "--int", "1"]),
 ]
 
 

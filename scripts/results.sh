@@ -6,6 +6,8 @@
 #                                 docs/results/*.png|svg, tables.md, results.csv
 #   scripts/results.sh --full     full sweep (scripts/sweeps/full.json, Wuson.ply and more):
 #                                 docs/results/full/
+#   scripts/results.sh --adaptive adaptive D3D11 workloads on Wuson.ply (scripts/sweeps/adaptive.json):
+#                                 docs/results/adaptive/ (no hardware cost needed)
 #
 # Options:
 #   --jobs N            points simulated in parallel (default: the number of cores)
@@ -37,13 +39,14 @@ cost_mode=()
 while (($#)); do
   case "$1" in
     --full) set_name=full; shift ;;
+    --adaptive) set_name=adaptive; shift ;;
     --jobs) jobs=${2:?--jobs needs a number}; shift 2 ;;
     --build-dir) build=${2:?--build-dir needs a directory}; shift 2 ;;
     --tessim) tessim=$(realpath "${2:?--tessim needs a path}"); shift 2 ;;
     --out) out=$(realpath -m "${2:?--out needs a directory}"); shift 2 ;;
     --resynth) cost_cache=""; shift ;;
     --recorded-costs) cost_mode=(--require-cached); shift ;;
-    -h|--help) sed -n '2,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "results.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -68,9 +71,12 @@ if [[ $set_name == small ]]; then
   # V = 4); the small set keeps to the N that matter for the conclusions. The CPG variants of the
   # cpg grid are costed as those units with their CPG replaced (costs.py --compose-cpg).
   cost_filter=(--where grid=balance int_blocks=1,2,3,4,6 --where grid=cpg --compose-cpg)
-else
+elif [[ $set_name == full ]]; then
   [[ -n $out ]] || out="$root/docs/results/full"
   cost_filter=(--where grid=balance,costs int_blocks=1,2,3,4,5,6)
+else
+  [[ -n $out ]] || out="$root/docs/results/$set_name"
+  cost_filter=()
 fi
 work="$build/results/$set_name"
 mkdir -p "$work" "$out"
@@ -78,7 +84,10 @@ mkdir -p "$work" "$out"
 start=$SECONDS
 "$python" scripts/sweep.py "scripts/sweeps/$set_name.json" -o "$work/results.csv" --cache "$work/cache" \
   --jobs "$jobs" --tessim "$tessim"
-"$python" scripts/costs.py "$work/results.csv" --in-place --tessim "$tessim" --cache "$cost_cache" "${cost_filter[@]}" "${cost_mode[@]}"
+if ((${#cost_filter[@]})); then
+  "$python" scripts/costs.py "$work/results.csv" --in-place --tessim "$tessim" --cache "$cost_cache" "${cost_filter[@]}" \
+    "${cost_mode[@]}"
+fi
 cp "$work/results.csv" "$out/results.csv"
 "$python" scripts/plots.py "$out/results.csv" --out "$out" --tessim "$tessim"
 if [[ $set_name == small ]]; then

@@ -21,8 +21,12 @@ reads: names, column order, defaults; README.md, Configuration files), plus
           /usr/share/assimp/models;
   camera, viewport, pixels_per_segment
           an adaptive workload (`tessim sim --adaptive screen --camera ...`): each triangle gets
-          the factor its edges' projected lengths ask for (docs/patterns.md §7); camera is
+          the D3D11 factors its edges' projected lengths ask for (docs/patterns.md §7); camera is
           "eye=x,y,z,target=x,y,z,fov=deg", viewport "WxH";
+  partitioning
+          the unit generates the D3D11 pattern with this spacing (`tessim sim --partitioning`):
+          integer, pow2, fractional_odd, fractional_even; with a camera the default is integer,
+          without one every factor is tess_factor;
   errors  true: also measure the fixed-point error of the run against the float64 reference
           (`tessim sim --errors`, vertex by vertex): positions relative to the input mesh's
           bounding-box diagonal, normals as angles in radians; columns error.*, and
@@ -78,9 +82,12 @@ CACHE_SCHEMA = 3  # bump when the cache record or the error measurement changes
 DEFAULT_TESSIM = REPO / "build" / "bin" / "tessim"
 # Keys that are not tessim configuration keys.
 # An adaptive workload (tessim sim --adaptive screen): the camera and its viewport and target
-# segment length; each triangle then gets its own factor (docs/patterns.md §7).
+# segment length; each triangle then gets its own factors (docs/patterns.md §7). `partitioning`
+# makes the unit generate the D3D11 pattern (with a camera: integer unless given; without:
+# every factor tess_factor).
 ADAPTIVE_KEYS = ("camera", "viewport", "pixels_per_segment")
-SWEEP_KEYS = ("mesh", "errors") + ADAPTIVE_KEYS
+PATTERN_KEYS = ADAPTIVE_KEYS + ("partitioning",)
+SWEEP_KEYS = ("mesh", "errors") + PATTERN_KEYS
 # Statistics that are not columns: the config is already the parameter columns, the mesh path
 # is the `mesh` parameter, the units are in docs/statistics.md and `tessim schema`, and the
 # timeline is a time series of up to 256 buckets, not a figure of the point.
@@ -115,7 +122,7 @@ def schema(tessim):
 def param_order(sch):
     """Column order of the parameters: the mesh, the schema's parameters in its order, errors.
     Keys not listed follow in alphabetical order."""
-    return ["mesh", *ADAPTIVE_KEYS] + [p["key"] for p in sch["parameters"]] + ["errors"]
+    return ["mesh", *PATTERN_KEYS] + [p["key"] for p in sch["parameters"]] + ["errors"]
 
 
 def defaults(sch):
@@ -197,6 +204,8 @@ def point_key(params, mesh_sha, tessim_sha):
     adaptive = {k: params[k] for k in ADAPTIVE_KEYS if k in params}
     if adaptive:
         ident["adaptive"] = adaptive
+    if "partitioning" in params:
+        ident["partitioning"] = params["partitioning"]
     return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
 
 
@@ -289,6 +298,8 @@ class Runner:
                     args += ["--viewport", str(params["viewport"])]
                 if "pixels_per_segment" in params:
                     args += ["--pixels-per-segment", str(params["pixels_per_segment"])]
+            if "partitioning" in params:
+                args += ["--partitioning", str(params["partitioning"])]
             try:
                 self.run(args, f"sim {params['mesh']}")
             except InputRejected as e:

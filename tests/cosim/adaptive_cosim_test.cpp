@@ -68,7 +68,11 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(Partitioning::integer, Partitioning::pow2, Partitioning::fractional_odd,
                                          Partitioning::fractional_even)),
     [](const auto& info) {
-      return "N" + std::to_string(std::get<0>(info.param)) + "_" + partitioning_name(std::get<1>(info.param));
+      std::string name = "N";
+      name += std::to_string(std::get<0>(info.param));
+      name += '_';
+      name += partitioning_name(std::get<1>(info.param));
+      return name;
     });
 
 }  // namespace

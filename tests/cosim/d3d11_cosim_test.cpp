@@ -41,7 +41,7 @@ TEST_P(RandomD3D11Cosim, AgreesOnEveryCycle) {
   const auto [n, which] = GetParam();
   const std::optional<Partitioning> partitioning =
       which < 4 ? std::optional<Partitioning>(static_cast<Partitioning>(which)) : std::nullopt;
-  const std::string variant = "n" + std::to_string(n);
+  const std::string variant = std::string(1, 'n').append(std::to_string(n));
   const std::uint64_t seed = 100 + static_cast<std::uint64_t>(4 * n + which);
   CosimOptions o = options(variant.c_str(), n, kModes[(n + which) % 3], 0.25, seed);
   std::vector<sim::TriangleFx> stream = random_triangles(60, seed, o.unit.format, 8);
@@ -61,8 +61,11 @@ INSTANTIATE_TEST_SUITE_P(NAndPartitionings, RandomD3D11Cosim,
                          ::testing::Combine(::testing::Values(1, 2, 3, 4), ::testing::Values(0, 1, 2, 3, 4)),
                          [](const auto& info) {
                            const int p = std::get<1>(info.param);
-                           return "N" + std::to_string(std::get<0>(info.param)) + "_" +
-                                  (p < 4 ? partitioning_name(static_cast<Partitioning>(p)) : "mixed");
+                           std::string name = "N";
+                           name += std::to_string(std::get<0>(info.param));
+                           name += '_';
+                           name += p < 4 ? partitioning_name(static_cast<Partitioning>(p)) : "mixed";
+                           return name;
                          });
 
 TEST(RandomD3D11Cosim, UniformAndD3D11PatchesInterleave) {
@@ -116,6 +119,28 @@ TEST(RandomD3D11Cosim, LargestPatternsAndTheirLimits) {
   EXPECT_EQ(sim::patch_vertex_count(stream[3]), 3);
   const CosimReport r = run_cosim(stream, o);
   EXPECT_TRUE(r.passed) << format_report(r, o);
+}
+
+TEST(FixedD3D11Cosim, TheSameFactorsForEveryPatchOfAMesh) {
+  // tessim cosim MESH --outer A,B,C --inner F --partitioning P: every partitioning, N = 2 and 3.
+  const Mesh mesh = load_mesh("/usr/share/assimp/models/STL/sphereWithHole.stl");
+  for (Partitioning p : {Partitioning::integer, Partitioning::pow2, Partitioning::fractional_odd,
+                         Partitioning::fractional_even}) {
+    for (int n : {2, 3}) {
+      const std::string variant = std::string(1, 'n').append(std::to_string(n));
+      CosimOptions o = options(variant.c_str(), n, NormalMode::Reflect, 0.2, 5);
+      TessSettings s;
+      s.kind = PatternKind::D3D11;
+      s.partitioning = p;
+      s.outer = {3.5f, 2.2f, 7.9f};
+      s.inner = 4.4f;
+      const sim::HostScaling scaling = sim::host_scaling(mesh);
+      std::vector<sim::TriangleFx> stream;
+      for (std::size_t i = 0; i < mesh.triangle_count(); ++i) stream.push_back(*sim::to_fixed(mesh, i, scaling, o.unit.format, s));
+      const CosimReport r = run_cosim(stream, o);
+      EXPECT_TRUE(r.passed) << partitioning_name(p) << "\n" << format_report(r, o);
+    }
+  }
 }
 
 }  // namespace

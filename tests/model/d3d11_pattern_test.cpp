@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -440,6 +441,51 @@ TEST(D3D11Pattern, NamesRoundTrip) {
   EXPECT_FALSE(parse_partitioning("fractional").has_value());
   EXPECT_EQ(parse_winding("cw"), Winding::cw);
   EXPECT_FALSE(parse_winding("CW").has_value());
+}
+
+// What a tessellation unit derives from the processed factors (d3d11_factors_from_fixed) is what
+// the float path derives, and the point walk's labels describe the points: ring 0 on the
+// boundary, inner rings inside, the centre a ring of its own at (1/3, 1/3), indices in order.
+TEST(D3D11Pattern, UnitSideSetupAndWalkAgreeWithThePattern) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<float> f(0.5f, 70.0f);
+  for (int i = 0; i < 4000; ++i) {
+    const auto part = static_cast<Partitioning>(i % 4);
+    const std::array<float, 3> outer{f(rng), f(rng), f(rng)};
+    const float inner = i % 5 == 0 ? 1.0f : f(rng);
+    const D3D11Factors a = d3d11_tri_factors(outer, inner, part);
+    const D3D11Factors b = d3d11_factors_from_fixed(a.outer_fixed, a.inner_fixed,
+                                                    part == Partitioning::pow2 ? Partitioning::integer : part);
+    ASSERT_EQ(a.single_triangle, b.single_triangle) << i;
+    ASSERT_EQ(a.outer_odd, b.outer_odd) << i;
+    ASSERT_EQ(a.inner_odd, b.inner_odd) << i;
+    ASSERT_EQ(a.outer_points, b.outer_points) << i;
+    ASSERT_EQ(a.inner_points, b.inner_points) << i;
+    const D3D11Setup setup = d3d11_setup(b);
+    const D3D11Pattern p = d3d11_tri_pattern(outer, inner, part);
+    ASSERT_EQ(setup.point_count, static_cast<int>(p.points.size())) << i;
+    int n = 0, last_ring = 0;
+    for (D3D11PointWalker walk(setup);; walk.next(setup), ++n) {
+      const FixedUV q = walk.point(setup);
+      ASSERT_EQ(walk.index(), n);
+      ASSERT_EQ(q.u, p.points[static_cast<std::size_t>(n)].u);
+      ASSERT_EQ(q.v, p.points[static_cast<std::size_t>(n)].v);
+      ASSERT_GE(walk.ring(), last_ring);
+      last_ring = walk.ring();
+      const Fixed16 w = kFixed16One - q.u - q.v;
+      if (walk.ring() == 0) {
+        ASSERT_TRUE(q.u == 0 || q.v == 0 || w == 0) << i << " point " << n;
+      }
+      if (walk.edge() == 3) {
+        ASSERT_EQ(q.u, 0x5555);
+        ASSERT_EQ(q.v, 0x5555);
+        ASSERT_GT(walk.ring(), 0);
+        ASSERT_TRUE(walk.last());
+      }
+      ASSERT_EQ(walk.last(), n + 1 == setup.point_count);
+      if (walk.last()) break;
+    }
+  }
 }
 
 }  // namespace

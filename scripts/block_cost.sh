@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Cost of one block of the unit on its own, by the generic flow of scripts/synth.sh (docs/rtl.md:
+# `synth -flatten`, flip-flops legalised, `stat -tech cmos`, `ltp -noff`): cells, flip-flops,
+# transistors, logic depth. For blocks synth.sh does not report separately (the DPG, the FSU).
+#
+# Usage: scripts/block_cost.sh MODULE [RTL_DIR] [-chparam NAME VALUE ...]
+#   RTL_DIR   where tess_pkg.sv and the tess_*.sv sources are (default: rtl/); another checkout's
+#             rtl/ costs an older version of a block the same way.
+set -euo pipefail
+module=${1:?usage: block_cost.sh MODULE [RTL_DIR] [-chparam NAME VALUE ...]}
+shift
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+rtl="$root/rtl"
+if (($#)) && [[ $1 != -chparam ]]; then rtl=$1; shift; fi
+chparam=""
+while (($#)); do
+  [[ $1 == -chparam && $# -ge 3 ]] || { echo "block_cost.sh: expected -chparam NAME VALUE" >&2; exit 2; }
+  chparam+=" -set $2 $3"; shift 3
+done
+sources="$rtl/tess_pkg.sv"
+while IFS= read -r f; do sources+=" $f"; done < <(ls "$rtl"/tess_*.sv | grep -v '/tess_pkg\.sv$' | LC_ALL=C sort)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+yosys -q -l "$work/log" -p "read_verilog -sv $sources; ${chparam:+chparam$chparam $module;} \
+  hierarchy -check -top $module; synth -flatten; tee -q -o $work/cells stat; \
+  async2sync; dfflegalize -cell \$_DFF_P_ 01; tee -q -o $work/cmos stat -tech cmos; \
+  tee -q -o $work/ltp ltp -noff" > /dev/null
+cells=$(sed -n 's/^ *Number of cells: *\([0-9]*\)/\1/p' "$work/cells" | tail -1)
+flops=$({ grep -E '^\s+\$_(S?DFF|DFFE|SDFFE|SDFFCE|ALDFF|DFFSR|DLATCH)' "$work/cells" || true; } | awk '{s += $2} END {print s + 0}')
+transistors=$(sed -n 's/.*Estimated number of transistors: *\([0-9+]*\).*/\1/p' "$work/cmos" | tail -1)
+depth=$(sed -n 's/.*Longest topological path in .* (length=\([0-9]*\)).*/\1/p' "$work/ltp" | tail -1)
+echo "$module: cells $cells, flip-flops $flops, transistors $transistors, depth $depth"
