@@ -122,7 +122,6 @@ class D3D11PointWalker {
 
  private:
   void enter_ring(const D3D11Setup& setup, int ring);
-  void update_last(const D3D11Setup& setup);
 
   int ring_ = 0, edge_ = 0, p_ = 0, index_ = 0;
   int ring_last_ = 0;        // ring r >= 1: its edges use inner points p = r .. ring_last_ - 1
