@@ -92,17 +92,6 @@ glm::dvec3 resolve_normal(const PnPatch& patch, const glm::dvec3& field, const g
   return nearest_corner_normal(patch, w, u, v);
 }
 
-// Bernstein basis of degree d at (w, u, v) for control point (i, j, k) = (d-j-k, j, k).
-double bernstein(int degree, int j, int k, double w, double u, double v) {
-  static constexpr double kFactorial[] = {1.0, 1.0, 2.0, 6.0};
-  const int i = degree - j - k;
-  double value = kFactorial[degree] / (kFactorial[i] * kFactorial[j] * kFactorial[k]);
-  for (int e = 0; e < i; ++e) value *= w;
-  for (int e = 0; e < j; ++e) value *= u;
-  for (int e = 0; e < k; ++e) value *= v;
-  return value;
-}
-
 // One INT operation of the unit: r = w A + u B + v C.
 glm::dvec3 int_op(double w, double u, double v, const glm::dvec3& a, const glm::dvec3& b,
                   const glm::dvec3& c) {
@@ -224,36 +213,95 @@ PnPatch make_stpn_patch(const PnInput& in, const std::array<VertexTags, 3>& tags
   return build_patch(in, sharp, mode, tangent);
 }
 
-PnVertex eval_bernstein(const PnPatch& patch, double u, double v) {
+// The basis is written so that a patch edge gives the same bits from both patches that share it
+// (as de Casteljau does): each value is a product whose factors are grouped by variable
+// (3 (a a) b, 2 (a b)), so swapping the roles of two variables maps it onto its mirror term;
+// and the sums below group the terms by corner and by edge, so that on an edge, where every
+// other term is an exact zero, the two corners and the two interior terms are added in pairs.
+// Both hold whenever the shared edge's weights are the same doubles in both patches (w = 1 - u
+// exactly, e.g. a power-of-two L).
+BasisAtPoint basis_at(double u, double v) {
+  BasisAtPoint b;
   const double w = 1.0 - u - v;
+  b.w = w;
+  b.u = u;
+  b.v = v;
+  auto& c = b.cubic;
+  c[net_index(0, 0, 3)] = (w * w) * w;          // b300
+  c[net_index(3, 0, 3)] = (u * u) * u;          // b030
+  c[net_index(0, 3, 3)] = (v * v) * v;          // b003
+  c[net_index(1, 0, 3)] = 3.0 * ((w * w) * u);  // b210
+  c[net_index(2, 0, 3)] = 3.0 * ((u * u) * w);  // b120
+  c[net_index(2, 1, 3)] = 3.0 * ((u * u) * v);  // b021
+  c[net_index(1, 2, 3)] = 3.0 * ((v * v) * u);  // b012
+  c[net_index(0, 2, 3)] = 3.0 * ((v * v) * w);  // b102
+  c[net_index(0, 1, 3)] = 3.0 * ((w * w) * v);  // b201
+  c[net_index(1, 1, 3)] = 6.0 * ((w * u) * v);  // b111
+  auto& q = b.quadratic;
+  q[net_index(0, 0, 2)] = w * w;          // n200
+  q[net_index(2, 0, 2)] = u * u;          // n020
+  q[net_index(0, 2, 2)] = v * v;          // n002
+  q[net_index(1, 0, 2)] = 2.0 * (w * u);  // n110
+  q[net_index(1, 1, 2)] = 2.0 * (u * v);  // n011
+  q[net_index(0, 1, 2)] = 2.0 * (w * v);  // n101
+  return b;
+}
+
+PnVertex eval_bernstein(const PnPatch& patch, double u, double v) { return eval_bernstein(patch, basis_at(u, v)); }
+
+PnVertex eval_bernstein(const PnPatch& patch, const BasisAtPoint& basis) {
+  const double w = basis.w, u = basis.u, v = basis.v;
+  const auto& c = basis.cubic;
+  const auto& b = patch.b;
+  auto term = [&](int j, int k) {
+    const auto i = static_cast<std::size_t>(net_index(j, k, 3));
+    return c[i] * b[i];
+  };
   PnVertex out;
-  out.position = glm::dvec3(0.0);
-  for (int k = 0; k <= 3; ++k)
-    for (int j = 0; j + k <= 3; ++j)
-      out.position += bernstein(3, j, k, w, u, v) * patch.b[net_index(j, k, 3)];
+  // Corners, then the edges' interior terms pair by pair, then the centre (see basis_at).
+  const glm::dvec3 corners = (term(0, 0) + term(3, 0)) + term(0, 3);
+  const glm::dvec3 edges = ((term(1, 0) + term(2, 0)) + (term(2, 1) + term(1, 2))) + (term(0, 2) + term(0, 1));
+  out.position = (corners + edges) + term(1, 1);
+
+  glm::dvec3 field(0.0);
+  if (patch.mode == NormalMode::Quadratic || patch.mode == NormalMode::Reflect) {
+    const auto& q = basis.quadratic;
+    const auto& n = patch.n_bern;
+    auto nterm = [&](int j, int k) {
+      const auto i = static_cast<std::size_t>(net_index(j, k, 2));
+      return q[i] * n[i];
+    };
+    field = ((nterm(0, 0) + nterm(2, 0)) + nterm(0, 2)) + ((nterm(1, 0) + nterm(1, 1)) + nterm(0, 1));
+  } else if (patch.mode == NormalMode::Linear) {
+    field = linear_field(patch, w, u, v);
+  }
+  // The usual case: the field is the normal. resolve_normal() would return the same vector; the
+  // tangents it needs otherwise are computed only when it is called.
+  if (patch.mode != NormalMode::Derivative && unit_field(field, out.normal)) return out;
 
   // Partial derivatives along u and v (w = 1 - u - v), each divided by 3:
   // sum over the degree-2 basis of the forward differences of the cubic net.
   glm::dvec3 du(0.0), dv(0.0);
   for (int k = 0; k <= 2; ++k) {
     for (int j = 0; j + k <= 2; ++j) {
-      const double basis = bernstein(2, j, k, w, u, v);
-      const glm::dvec3& base = patch.b[net_index(j, k, 3)];
-      du += basis * (patch.b[net_index(j + 1, k, 3)] - base);
-      dv += basis * (patch.b[net_index(j, k + 1, 3)] - base);
+      const double b2 = basis.quadratic[static_cast<std::size_t>(net_index(j, k, 2))];
+      const glm::dvec3& base = b[static_cast<std::size_t>(net_index(j, k, 3))];
+      du += b2 * (b[static_cast<std::size_t>(net_index(j + 1, k, 3))] - base);
+      dv += b2 * (b[static_cast<std::size_t>(net_index(j, k + 1, 3))] - base);
     }
-  }
-
-  glm::dvec3 field(0.0);
-  if (patch.mode == NormalMode::Quadratic || patch.mode == NormalMode::Reflect) {
-    for (int k = 0; k <= 2; ++k)
-      for (int j = 0; j + k <= 2; ++j)
-        field += bernstein(2, j, k, w, u, v) * patch.n_bern[net_index(j, k, 2)];
-  } else if (patch.mode == NormalMode::Linear) {
-    field = linear_field(patch, w, u, v);
   }
   out.normal = resolve_normal(patch, field, du, dv, w, u, v);
   return out;
+}
+
+int de_casteljau_ops(NormalMode mode) {
+  switch (mode) {
+    case NormalMode::Quadratic:
+    case NormalMode::Reflect: return 10 + 4;
+    case NormalMode::Linear: return 10 + 1;
+    case NormalMode::Derivative: return 10;
+  }
+  return 10;
 }
 
 PnVertex eval_de_casteljau(const PnPatch& patch, double u, double v, std::uint64_t* int_ops) {
@@ -291,7 +339,7 @@ PnVertex eval_de_casteljau(const PnPatch& patch, double u, double v, std::uint64
     case NormalMode::Derivative:
       break;
   }
-  if (int_ops) *int_ops += static_cast<std::uint64_t>(ops);
+  if (int_ops) *int_ops += static_cast<std::uint64_t>(ops);  // de_casteljau_ops(patch.mode)
 
   // Fallbacks are numerics of the reference, not operations of the unit: not counted.
   return {level3[0], resolve_normal(patch, field, q_u - q_w, q_v - q_w, w, u, v)};

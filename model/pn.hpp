@@ -45,8 +45,23 @@ PnPatch make_patch(const PnInput& in, NormalMode mode);
 // plain PN formulas, so all-neutral tags give make_patch()'s patch bit for bit.
 PnPatch make_stpn_patch(const PnInput& in, const std::array<VertexTags, 3>& tags, NormalMode mode);
 
-// Direct evaluation by Bernstein sums at barycentric (w, u, v) = (1-u-v, u, v).
+// The Bernstein basis of degrees 3 and 2 at one domain point (w, u, v) = (1-u-v, u, v), in net
+// order: what every patch evaluated at that point shares. Whole-mesh tessellation computes it
+// once per point of a pattern and reuses it for every patch.
+struct BasisAtPoint {
+  double w = 1.0, u = 0.0, v = 0.0;
+  std::array<double, 10> cubic{};     // B^3_{ijk}(w, u, v)
+  std::array<double, 6> quadratic{};  // B^2_{ijk}(w, u, v)
+};
+BasisAtPoint basis_at(double u, double v);
+
+// Direct evaluation by Bernstein sums at barycentric (w, u, v) = (1-u-v, u, v). The two forms
+// give the same bits: the first is the second with basis_at(u, v).
 PnVertex eval_bernstein(const PnPatch& patch, double u, double v);
+PnVertex eval_bernstein(const PnPatch& patch, const BasisAtPoint& basis);
+
+// The INT operations de Casteljau performs per vertex in a mode (what eval_de_casteljau adds).
+int de_casteljau_ops(NormalMode mode);
 
 // Evaluation by de Casteljau. Adds the number of INT operations (barycentric combinations of
 // three points) it performs to *int_ops when given: 10 for the geometry, +4 quadratic/reflect,

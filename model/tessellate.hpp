@@ -15,6 +15,7 @@
 #include "model/factors.hpp"
 #include "model/mesh.hpp"
 #include "model/normal_mode.hpp"
+#include "model/pn.hpp"
 
 namespace tessim {
 
@@ -24,6 +25,7 @@ struct DomainPattern {
   int uniform_L = 0;  // > 0: the uniform pattern of that factor (model/pattern.hpp)
   bool culled = false;
   std::vector<glm::dvec2> points;
+  std::vector<BasisAtPoint> basis;  // the Bernstein basis at each point, shared by every patch
   std::vector<std::uint32_t> indices;
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -40,6 +42,7 @@ class PatternCache {
   TessSettings settings_;
   DomainPattern uniform_;
   std::map<std::array<std::uint32_t, 4>, DomainPattern> by_factors_;
+  std::size_t cached_points_ = 0;  // points of the patterns in by_factors_ (bounds its memory)
 };
 
 // One tessellated input triangle: its pattern's points evaluated on the PN patch, in the
@@ -58,7 +61,7 @@ struct TessellationSummary {
   std::uint64_t culled = 0;             // patches a factor <= 0 or NaN culled
   std::uint64_t vertices = 0;
   std::uint64_t triangles = 0;
-  std::uint64_t int_ops = 0;            // de Casteljau INT operations performed
+  std::uint64_t int_ops = 0;            // INT operations the unit's de Casteljau performs for them
   std::uint64_t degenerate_edges = 0;   // mid-edge normal fallbacks (zero-length edges)
   std::uint64_t degenerate_triangles = 0;  // zero-area input triangles
 };

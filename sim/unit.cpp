@@ -78,7 +78,7 @@ void Unit::tick(const UnitInputs& in) {
   const bool allocate = te_.can_allocate(point_available);
   const CpgAction cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
   const bool head_waiting = te_.head_waiting();
-  const int issued = te_.schedule(buffers_);  // reads the buffers and temporaries as registered
+  const int issued = te_.schedule();  // from the ready masks as registered
 
   // ---- Statistics of the cycle, from the same registered state.
   const TeClass te = te_.classify(issued, head_waiting, head_done, vtx_fifo_.full(), point_available,
@@ -122,7 +122,7 @@ void Unit::skip(std::uint64_t n, const UnitInputs& in) {
   const bool point_available = buffers_.rd_full();
   const CpgAction cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
   const bool head_waiting = te_.head_waiting();
-  const int issued = te_.schedule(buffers_);  // issues nothing: the TE is quiet
+  const int issued = te_.schedule();  // issues nothing: the TE is quiet
   const TeClass te = te_.classify(issued, head_waiting, head_done, vtx_fifo_.full(), point_available,
                                   cpg_.busy() || !tri_fifo_.empty());
   const CpgClass cpg_class = CpgBlock::classify(cpg);

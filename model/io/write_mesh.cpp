@@ -2,6 +2,7 @@
 // (MeshWriter in model/mesh_io.hpp); whole meshes, tags included, as PLY (write_ply).
 #include <bit>
 #include <charconv>
+#include <cstring>
 #include <iostream>
 #include <optional>
 #include <limits>
@@ -41,6 +42,26 @@ void append_obj_vec(std::string& s, const char* keyword, const glm::dvec3& v) {
 
 void append_raw(std::string& s, const void* data, std::size_t size) { s.append(static_cast<const char*>(data), size); }
 
+// Extends s by n bytes and returns where they start: records are then copied in place, without
+// a capacity check per field.
+char* extend(std::string& s, std::size_t n) {
+  const std::size_t at = s.size();
+  s.resize(at + n);
+  return s.data() + at;
+}
+
+static_assert(sizeof(glm::dvec3) == 3 * sizeof(double), "a PLY vertex record is two dvec3 back to back");
+constexpr std::size_t kPlyVertexBytes = 6 * sizeof(double);
+constexpr std::size_t kPlyFaceBytes = 1 + 3 * sizeof(std::uint32_t);  // uchar 3, three uint indices
+
+// One PLY face record: the corner count, then the indices (unaligned, little-endian).
+char* put_face(char* out, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const std::uint32_t indices[3] = {a, b, c};
+  *out = 3;
+  std::memcpy(out + 1, indices, sizeof indices);
+  return out + kPlyFaceBytes;
+}
+
 }  // namespace
 
 bool is_supported_output(const std::filesystem::path& path) {
@@ -57,6 +78,7 @@ struct MeshWriter::Impl {
       file.emplace(target, ply);
       stream = &file->stream();
     }
+    buffer.reserve(2 * kBlock);  // a block and the patch that completes it: no reallocation
   }
 
   std::filesystem::path path;
@@ -148,9 +170,10 @@ void MeshWriter::append(int L, std::span<const glm::dvec3> positions, std::span<
 
   std::string& s = w.buffer;
   if (w.is_ply) {
-    for (std::uint64_t i = 0; i < n; ++i) {
-      const double record[6] = {positions[i].x, positions[i].y, positions[i].z, normals[i].x, normals[i].y, normals[i].z};
-      append_raw(s, record, sizeof record);
+    char* out = extend(s, n * kPlyVertexBytes);
+    for (std::uint64_t i = 0; i < n; ++i, out += kPlyVertexBytes) {
+      std::memcpy(out, &positions[i], sizeof(glm::dvec3));
+      std::memcpy(out + sizeof(glm::dvec3), &normals[i], sizeof(glm::dvec3));
     }
     // Faces come after all vertices: a uniform patch is remembered by its factor, any other
     // by its faces.
@@ -197,9 +220,8 @@ void MeshWriter::finish() {
     for (const Impl::Run& run : w.runs) {
       if (run.L == 0) {
         for (std::uint64_t t = 0; t < run.faces; ++t, next_explicit += 3) {
-          const unsigned char corners = 3;
-          append_raw(w.buffer, &corners, 1);
-          append_raw(w.buffer, &w.explicit_faces[next_explicit], 3 * sizeof(std::uint32_t));
+          const std::uint32_t* f = &w.explicit_faces[next_explicit];
+          put_face(extend(w.buffer, kPlyFaceBytes), f[0], f[1], f[2]);
           if (w.buffer.size() >= Impl::kBlock) w.write_buffer();
         }
         base += static_cast<std::uint32_t>(run.vertices);
@@ -208,14 +230,11 @@ void MeshWriter::finish() {
       const int L = run.L;
       const std::uint64_t count = run.count;
       const std::vector<glm::uvec3> pattern = pattern_triangles(L);
+      const auto patch_vertices = static_cast<std::uint32_t>(pattern_vertex_count(L));
       for (std::uint64_t p = 0; p < count; ++p) {
-        for (const glm::uvec3& tri : pattern) {
-          const unsigned char corners = 3;
-          const std::uint32_t indices[3] = {base + tri[0], base + tri[1], base + tri[2]};
-          append_raw(w.buffer, &corners, 1);
-          append_raw(w.buffer, indices, sizeof indices);
-        }
-        base += static_cast<std::uint32_t>(pattern_vertex_count(L));
+        char* out = extend(w.buffer, pattern.size() * kPlyFaceBytes);
+        for (const glm::uvec3& tri : pattern) out = put_face(out, base + tri[0], base + tri[1], base + tri[2]);
+        base += patch_vertices;
         if (w.buffer.size() >= Impl::kBlock) w.write_buffer();
       }
     }

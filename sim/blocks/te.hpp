@@ -58,9 +58,9 @@ class Te {
   bool quiet() const { return ready_slots_ == 0 && ints_.empty(); }
   void skip(std::uint64_t cycles) { ints_.skip(cycles); }  // `cycles` quiet clock edges
 
-  // Scheduler of the cycle: issues up to N ready ops reading the control points in `buffers`;
-  // returns how many (the i-th went to INT block i, described by issued_ops()[i]).
-  int schedule(const ControlPointBuffer& buffers) {
+  // Scheduler of the cycle: issues up to N ready ops; returns how many (the i-th went to INT
+  // block i, described by issued_ops()[i]).
+  int schedule() {
     int issued = 0;
     const int n_blocks = ints_.blocks();
     // Contexts with a ready op, oldest first: the slot mask rotated so that bit 0 is the head.
@@ -73,7 +73,7 @@ class Te {
       while (ctx.ready != 0 && issued < n_blocks) {
         const int op = std::countr_zero(ctx.ready);
         ctx.ready &= ctx.ready - 1;
-        issue(buffers, ctx, slot, op, issued);
+        issue(ctx, slot, op, issued);
         ++issued;
       }
       if (ctx.ready == 0) ready_slots_ &= ~(std::uint32_t{1} << slot);
@@ -107,7 +107,6 @@ class Te {
 
  private:
   struct Context {
-    std::array<FxVec, int_ops::kOpCount> t{};  // temporaries T0..T13
     // The vertex as it will leave the TE, but for pos and nrm (written at retirement from T13
     // and the mode's normal op): weights, lattice point, factor, patch id, last, flags.
     VertexFx tag;
@@ -145,48 +144,40 @@ class Te {
     return m;
   }();
 
-  void issue(const ControlPointBuffer& buffers, Context& ctx, int context_slot, int op, int block) {
-    const ControlPointsFx& cp = buffers.entry(ctx.buffer).cp;
-    // One instance per op, so that every operand is a load at a constant offset.
-    switch (op) {
-      case 0: compute<0>(cp, ctx); break;
-      case 1: compute<1>(cp, ctx); break;
-      case 2: compute<2>(cp, ctx); break;
-      case 3: compute<3>(cp, ctx); break;
-      case 4: compute<4>(cp, ctx); break;
-      case 5: compute<5>(cp, ctx); break;
-      case 6: compute<6>(cp, ctx); break;
-      case 7: compute<7>(cp, ctx); break;
-      case 8: compute<8>(cp, ctx); break;
-      case 9: compute<9>(cp, ctx); break;
-      case 10: compute<10>(cp, ctx); break;
-      case 11: compute<11>(cp, ctx); break;
-      case 12: compute<12>(cp, ctx); break;
-      case 13: compute<13>(cp, ctx); break;
-      default: break;
-    }
+  // The op's timing only: its value is computed with the others when the vertex retires.
+  void issue(Context& ctx, int context_slot, int op, int block) {
     ctx.issued |= std::uint32_t{1} << op;
     if (ints_.latency() > 1) ints_.issue(context_slot, std::uint32_t{1} << op);  // Λ = 1: issued_ is the list
     issued_[static_cast<std::size_t>(block)] = IssuedOp{block, context_slot, op, ctx.seq};
   }
 
+  // The values of a vertex's ops. An op's result depends only on its operands, which are the
+  // control points (unchanged until the patch's last vertex retires) and earlier results, never
+  // on when it was issued: computing them all at retirement, in op order (a topological order of
+  // the table), gives the results the INT blocks produce at issue, bit for bit.
+  using Temporaries = std::array<FxVec, int_ops::kOpCount>;
   template <int_ops::Operand O>
-  static const FxVec& operand(const ControlPointsFx& cp, const Context& ctx) {
+  static const FxVec& operand(const ControlPointsFx& cp, const Temporaries& t) {
     if constexpr (O.net == int_ops::Net::B) return cp.b[O.index];
     else if constexpr (O.net == int_ops::Net::N) return cp.n[O.index];
-    else return ctx.t[O.index];
+    else return t[O.index];
   }
   template <std::array<int_ops::Operand, 3> Src>
-  void compute_from(const ControlPointsFx& cp, Context& ctx, int op) const {
-    ctx.t[static_cast<std::size_t>(op)] = int_op(ctx.w, ctx.tag.u, ctx.tag.v, operand<Src[0]>(cp, ctx),
-                                                 operand<Src[1]>(cp, ctx), operand<Src[2]>(cp, ctx), bary_bits_);
+  void compute_from(const ControlPointsFx& cp, const Context& ctx, Temporaries& t, int op) const {
+    t[static_cast<std::size_t>(op)] = int_op(ctx.w, ctx.tag.u, ctx.tag.v, operand<Src[0]>(cp, t),
+                                             operand<Src[1]>(cp, t), operand<Src[2]>(cp, t), bary_bits_);
   }
   template <int Op>
-  void compute(const ControlPointsFx& cp, Context& ctx) const {
+  void compute(const ControlPointsFx& cp, const Context& ctx, Temporaries& t) const {
     if constexpr (Op == int_ops::kLinearNormalOp) {
-      if (linear_normals_) return compute_from<int_ops::operands(Op, NormalMode::Linear)>(cp, ctx, Op);
+      if (linear_normals_) return compute_from<int_ops::operands(Op, NormalMode::Linear)>(cp, ctx, t, Op);
     }
-    compute_from<int_ops::kIntOps[Op].operands>(cp, ctx, Op);
+    if (absent_ops_ & (std::uint32_t{1} << Op)) return;
+    compute_from<int_ops::kIntOps[Op].operands>(cp, ctx, t, Op);
+  }
+  template <std::size_t... Op>
+  void compute_all(const ControlPointsFx& cp, const Context& ctx, Temporaries& t, std::index_sequence<Op...>) const {
+    (compute<static_cast<int>(Op)>(cp, ctx, t), ...);
   }
 
   int n_contexts_;
@@ -216,10 +207,12 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
 
   if (retire_into) {
     const Context& h = contexts_[static_cast<std::size_t>(head_)];
+    Temporaries t;
+    compute_all(buffers.entry(h.buffer).cp, h, t, std::make_index_sequence<int_ops::kOpCount>{});
     VertexFx& out = *retire_into;
     out = h.tag;
-    out.pos = h.t[int_ops::kPositionOp];
-    out.nrm = h.t[static_cast<std::size_t>(normal_op_)];
+    out.pos = t[int_ops::kPositionOp];
+    out.nrm = t[static_cast<std::size_t>(normal_op_)];
     if (h.tag.last) buffers.release(h.buffer);
     if (retired_seq) *retired_seq = h.seq;
     head_ = head_ + 1 == n_contexts_ ? 0 : head_ + 1;

@@ -148,6 +148,7 @@ TEST(PnPatch, IntOpsAccumulate) {
     std::uint64_t ops = 1000;  // the evaluator adds to the running total
     for (int i = 0; i < 5; ++i) eval_de_casteljau(patch, 0.2, 0.3, &ops);
     EXPECT_EQ(ops, 1000 + 5 * ops_per_vertex(mode)) << to_string(mode);
+    EXPECT_EQ(de_casteljau_ops(mode), static_cast<int>(ops_per_vertex(mode))) << to_string(mode);
   }
 }
 
@@ -433,14 +434,16 @@ TEST(Tessellate, StreamsPatchesInOrderThroughFixedBuffers) {
 }
 
 // Large uniform jobs are evaluated on several threads (tessellate.cpp): the sink must still see
-// every patch in input order, each bit-identical to a direct de Casteljau evaluation, with the
-// same summary; and a sink that fails stops the workers and reaches the caller.
+// every patch in input order, each bit-identical to a direct evaluation of the same patch, with
+// the INT operations de Casteljau performs for them; and a sink that fails stops the workers and
+// reaches the caller.
 TEST(Tessellate, ParallelEvaluationKeepsOrderValuesAndSummary) {
   const Mesh mesh = load_mesh("/usr/share/assimp/models/PLY/Wuson.ply");
   const int L = 8;  // 3732 patches x 45 vertices: several batches
   const auto points = pattern_points(L);
   std::uint32_t expected = 0;
   std::uint64_t mismatches = 0, int_ops = 0;
+  double max_difference = 0.0;
   const TessellationSummary s = tessellate_mesh(mesh, L, NormalMode::Quadratic, [&](const PatchView& view) {
     ASSERT_EQ(view.triangle, expected++);
     const glm::uvec3 t = mesh.triangles[view.triangle];
@@ -451,12 +454,17 @@ TEST(Tessellate, ParallelEvaluationKeepsOrderValuesAndSummary) {
     }
     const PnPatch patch = make_patch(in, NormalMode::Quadratic);
     for (std::size_t i = 0; i < points.size(); ++i) {
-      const PnVertex x = eval_de_casteljau(patch, points[i].j / double(L), points[i].k / double(L), &int_ops);
+      const double u = points[i].j / double(L), v = points[i].k / double(L);
+      const PnVertex x = eval_bernstein(patch, u, v);
       mismatches += view.positions[i] != x.position || view.normals[i] != x.normal;
+      // The same surface as de Casteljau, up to rounding.
+      const PnVertex y = eval_de_casteljau(patch, u, v, &int_ops);
+      max_difference = std::max({max_difference, glm::length(x.position - y.position), glm::length(x.normal - y.normal)});
     }
   });
   EXPECT_EQ(expected, mesh.triangles.size());
   EXPECT_EQ(mismatches, 0u);
+  EXPECT_LT(max_difference, 1e-13);
   EXPECT_EQ(s.patches, mesh.triangles.size());
   EXPECT_EQ(s.vertices, mesh.triangles.size() * points.size());
   EXPECT_EQ(s.int_ops, int_ops);
