@@ -102,7 +102,7 @@ class Te {
   // The clock edge. `retire_into`: the VTX FIFO slot the head vertex retires into (null: no
   // retirement); `allocate`: the DPG's current point goes into the tail context. Returns the
   // sequence numbers of the retired and allocated vertices through the pointers when non-null.
-  void commit(VertexFx* retire_into, bool allocate, ControlPointBuffer& buffers, std::uint64_t* retired_seq,
+  [[gnu::always_inline]] void commit(VertexFx* retire_into, bool allocate, ControlPointBuffer& buffers, std::uint64_t* retired_seq,
               std::uint64_t* allocated_seq);
 
  private:
@@ -179,6 +179,15 @@ class Te {
   void compute_all(const ControlPointsFx& cp, const Context& ctx, Temporaries& t, std::index_sequence<Op...>) const {
     (compute<static_cast<int>(Op)>(cp, ctx, t), ...);
   }
+  // The retiring vertex, values computed. Once per vertex, out of line: commit(), which runs
+  // every cycle, stays small enough to be inlined into the unit's tick.
+  [[gnu::noinline]] void write_vertex(const ControlPointsFx& cp, const Context& ctx, VertexFx& out) const {
+    Temporaries t;
+    compute_all(cp, ctx, t, std::make_index_sequence<int_ops::kOpCount>{});
+    out = ctx.tag;
+    out.pos = t[int_ops::kPositionOp];
+    out.nrm = t[static_cast<std::size_t>(normal_op_)];
+  }
 
   int n_contexts_;
   int bary_bits_;
@@ -207,12 +216,7 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
 
   if (retire_into) {
     const Context& h = contexts_[static_cast<std::size_t>(head_)];
-    Temporaries t;
-    compute_all(buffers.entry(h.buffer).cp, h, t, std::make_index_sequence<int_ops::kOpCount>{});
-    VertexFx& out = *retire_into;
-    out = h.tag;
-    out.pos = t[int_ops::kPositionOp];
-    out.nrm = t[static_cast<std::size_t>(normal_op_)];
+    write_vertex(buffers.entry(h.buffer).cp, h, *retire_into);
     if (h.tag.last) buffers.release(h.buffer);
     if (retired_seq) *retired_seq = h.seq;
     head_ = head_ + 1 == n_contexts_ ? 0 : head_ + 1;
