@@ -1,7 +1,8 @@
 // The N INT blocks of rtl/tess_int.sv (docs/microarchitecture.md §8): each takes one operation
-// per cycle and delivers it Λ cycles later. The cycle model computes the result at issue
-// (nothing can read it before its done bit is set, so the early write is invisible) and keeps
-// only the done bits in flight: completions due at the end of cycle c wait in slot c mod Λ.
+// per cycle and delivers it Λ cycles later. The cycle model keeps only the done bits in flight
+// (completions due at the end of cycle c wait in slot c mod Λ); the values are computed when
+// the vertex retires (sim/blocks/te.hpp): a result depends on its operands alone, never on
+// when it was issued.
 #pragma once
 
 #include <array>
