@@ -86,36 +86,39 @@ class CpgBlock {
     }
   }
 
-  // The clock edge. Accept latches `tri_front`; Write fills the buffer at wr_ptr.
+  // The clock edge. Accept latches `tri_front`; Write fills the buffer at wr_ptr. Both happen
+  // once per triangle, out of line: the countdown, every other cycle, stays inlined in the tick.
   void commit(CpgAction a, const TriangleFx& tri_front, ControlPointBuffer& buffers) {
     switch (a) {
-      case CpgAction::Accept:
-        latch_ = tri_front;
-        busy_ = true;
-        counter_ = gpe_mapping_ ? cycles_ : cycles_ - 1;
-        if (tags_) {
-          const int extra = cpg_tag_cycles(latch_, format_, variant_);
-          counter_ += extra;
-          tag_cycles_ += static_cast<std::uint64_t>(extra);
-        }
-        break;
+      case CpgAction::Accept: accept(tri_front); break;
       case CpgAction::Compute: --counter_; break;
-      case CpgAction::Write: {
-        ControlPointBuffer::Entry& e = buffers.write_slot();
-        e.cp = compute_control_points(latch_, normals_, format_);
-        e.L = latch_.L;
-        e.pattern = latch_.pattern;
-        if (latch_.pattern != TriPattern::uniform) e.d3d11 = tri_setup(latch_);
-        e.id = latch_.id;
-        buffers.commit_write();
-        busy_ = false;
-        break;
-      }
+      case CpgAction::Write: write(buffers); break;
       default: break;
     }
   }
 
  private:
+  [[gnu::noinline]] void accept(const TriangleFx& tri) {
+    latch_ = tri;
+    busy_ = true;
+    counter_ = gpe_mapping_ ? cycles_ : cycles_ - 1;
+    if (tags_) {
+      const int extra = cpg_tag_cycles(latch_, format_, variant_);
+      counter_ += extra;
+      tag_cycles_ += static_cast<std::uint64_t>(extra);
+    }
+  }
+  [[gnu::noinline]] void write(ControlPointBuffer& buffers) {
+    ControlPointBuffer::Entry& e = buffers.write_slot();
+    e.cp = compute_control_points(latch_, normals_, format_);
+    e.L = latch_.L;
+    e.pattern = latch_.pattern;
+    if (latch_.pattern != TriPattern::uniform) e.d3d11 = tri_setup(latch_);
+    e.id = latch_.id;
+    buffers.commit_write();
+    busy_ = false;
+  }
+
   NormalMode normals_;
   NumberFormat format_;
   int cycles_;
