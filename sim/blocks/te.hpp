@@ -119,30 +119,17 @@ class Te {
     std::uint64_t seq = 0;
   };
 
-  // Ops whose dependences are all done (issued or not): the table's masks, expanded at compile
-  // time into one test per dependent op (this runs for every context every cycle).
-  static std::uint32_t dependences_met(std::uint32_t done) {
-    return dependences_met(done, std::make_index_sequence<int_ops::kOpCount>{});
-  }
-  template <std::size_t... Op>
-  static std::uint32_t dependences_met(std::uint32_t done, std::index_sequence<Op...>) {
-    return (op_ready<Op>(done) | ...);
-  }
-  template <std::size_t Op>
-  static std::uint32_t op_ready(std::uint32_t done) {
-    constexpr std::uint32_t deps = int_ops::kIntOps[Op].depends;
-    if constexpr (deps == 0) return std::uint32_t{1} << Op;
-    else return std::uint32_t{(done & deps) == deps} << Op;
-  }
-
-  // Bit d of kDependents[o]: op d needs the result of op o.
-  static constexpr std::array<std::uint32_t, int_ops::kOpCount> kDependents = [] {
-    std::array<std::uint32_t, int_ops::kOpCount> m{};
-    for (const int_ops::IntOp& d : int_ops::kIntOps)
-      for (int o = 0; o < int_ops::kOpCount; ++o)
-        if (d.depends & (std::uint32_t{1} << o)) m[static_cast<std::size_t>(o)] |= std::uint32_t{1} << d.op;
-    return m;
+  // Ops whose dependences are all done (issued or not), for every done mask: a context's ready
+  // mask after a completion is one load (2^14 entries of 16 bits, built at compile time).
+  static_assert(int_ops::kOpCount <= 16, "kDependencesMet holds 16-bit masks");
+  static constexpr std::array<std::uint16_t, std::size_t{1} << int_ops::kOpCount> kDependencesMet = [] {
+    std::array<std::uint16_t, std::size_t{1} << int_ops::kOpCount> met{};
+    for (std::uint32_t done = 0; done < met.size(); ++done)
+      for (const int_ops::IntOp& o : int_ops::kIntOps)
+        if ((done & o.depends) == o.depends) met[done] = static_cast<std::uint16_t>(met[done] | (1u << o.op));
+    return met;
   }();
+  static std::uint32_t dependences_met(std::uint32_t done) { return kDependencesMet[done]; }
 
   // The op's timing only: its value is computed with the others when the vertex retires.
   void issue(Context& ctx, int context_slot, int op, int block) {
@@ -227,15 +214,8 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
   auto complete = [this](int context, std::uint32_t bit) {
     Context& c = contexts_[static_cast<std::size_t>(context)];
     c.done |= bit;
-    // Only the ops that depend on this one can have become ready.
-    std::uint32_t candidates = kDependents[static_cast<std::size_t>(std::countr_zero(bit))];
-    while (candidates != 0) {
-      const int d = std::countr_zero(candidates);
-      candidates &= candidates - 1;
-      const std::uint32_t deps = int_ops::kIntOps[static_cast<std::size_t>(d)].depends;
-      if ((c.done & deps) == deps) c.ready |= std::uint32_t{1} << d;
-    }
-    c.ready &= ~c.issued;  // absent ops (linear normals) are issued from the start
+    // Absent ops (linear normals) are issued from the start, so they never become ready.
+    c.ready = dependences_met(c.done) & ~c.issued;
     if (c.ready != 0) ready_slots_ |= std::uint32_t{1} << context;
   };
   if (ints_.latency() == 1) {
