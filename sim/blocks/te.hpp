@@ -120,16 +120,23 @@ class Te {
   };
 
   // Ops whose dependences are all done (issued or not), for every done mask: a context's ready
-  // mask after a completion is one load (2^14 entries of 16 bits, built at compile time).
-  static_assert(int_ops::kOpCount <= 16, "kDependencesMet holds 16-bit masks");
-  static constexpr std::array<std::uint16_t, std::size_t{1} << int_ops::kOpCount> kDependencesMet = [] {
-    std::array<std::uint16_t, std::size_t{1} << int_ops::kOpCount> met{};
+  // mask after a completion is one load. Only the ops some op depends on (0..11) index the table
+  // (2^12 entries of 16 bits, built at compile time within clang's constexpr step limit).
+  static constexpr std::uint32_t kDependedOn = [] {
+    std::uint32_t m = 0;
+    for (const int_ops::IntOp& o : int_ops::kIntOps) m |= o.depends;
+    return m;
+  }();
+  static_assert(int_ops::kOpCount <= 16 && (kDependedOn & (kDependedOn + 1)) == 0,
+                "kDependencesMet holds 16-bit masks indexed by the low, contiguous depended-on ops");
+  static constexpr std::array<std::uint16_t, std::size_t{kDependedOn} + 1> kDependencesMet = [] {
+    std::array<std::uint16_t, std::size_t{kDependedOn} + 1> met{};
     for (std::uint32_t done = 0; done < met.size(); ++done)
       for (const int_ops::IntOp& o : int_ops::kIntOps)
         if ((done & o.depends) == o.depends) met[done] = static_cast<std::uint16_t>(met[done] | (1u << o.op));
     return met;
   }();
-  static std::uint32_t dependences_met(std::uint32_t done) { return kDependencesMet[done]; }
+  static std::uint32_t dependences_met(std::uint32_t done) { return kDependencesMet[done & kDependedOn]; }
 
   // The op's timing only: its value is computed with the others when the vertex retires.
   void issue(Context& ctx, int context_slot, int op, int block) {
