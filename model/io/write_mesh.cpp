@@ -289,10 +289,7 @@ void write_ply(const Mesh& mesh, const std::filesystem::path& path) {
     if (buffer.size() >= kBlock) flush();
   }
   for (const glm::uvec3& t : mesh.triangles) {
-    const unsigned char corners = 3;
-    const std::uint32_t indices[3] = {t.x, t.y, t.z};
-    append_raw(buffer, &corners, 1);
-    append_raw(buffer, indices, sizeof indices);
+    put_face(extend(buffer, kPlyFaceBytes), t.x, t.y, t.z);
     if (buffer.size() >= kBlock) flush();
   }
   flush();
