@@ -1,7 +1,8 @@
 // The N INT blocks of rtl/tess_int.sv (docs/microarchitecture.md §8): each takes one operation
-// per cycle and delivers it Λ cycles later. The cycle model keeps only the done bits in flight
-// (completions due at the end of cycle c wait in slot c mod Λ); the values are computed when
-// the vertex retires (sim/blocks/te.hpp): a result depends on its operands alone, never on
+// per cycle and delivers it Λ cycles later. The cycle model keeps only the done bits in flight:
+// the ops one cycle issued, as age-ordered masks (sim/blocks/op_masks.hpp) with the number of
+// retirements before their issue, wait in slot (issue + Λ - 1) mod Λ. The values are computed
+// when the vertex retires (sim/blocks/te.hpp): a result depends on its operands alone, never on
 // when it was issued.
 #pragma once
 
@@ -9,15 +10,12 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "sim/blocks/op_masks.hpp"
+
 namespace tessim::sim {
 
 class IntBlocks {
  public:
-  struct Completion {
-    std::uint8_t context;
-    std::uint32_t bit;  // done bit of the op
-  };
-
   // The configuration limits: N <= 32, Λ <= 8 (sim/params.cpp).
   static constexpr int kMaxBlocks = 32;
   static constexpr int kMaxLatency = 8;
@@ -29,25 +27,23 @@ class IntBlocks {
   }
 
   void reset() {
-    pending_count_.fill(0);
+    for (InFlight& f : slots_) f.pending = false;
+    pending_count_ = 0;
     due_slot_ = 0;
   }
 
   int blocks() const { return blocks_; }
-  bool empty() const {  // no completion pending
-    for (int i = 0; i < latency_; ++i)
-      if (pending_count_[static_cast<std::size_t>(i)] != 0) return false;
-    return true;
-  }
   int latency() const { return latency_; }
+  bool empty() const { return pending_count_ == 0; }  // no completion pending
 
-  // An op issued in this cycle: its done bit is due at the end of cycle t + Λ - 1, whose slot
-  // is (t + Λ - 1) mod Λ = (t - 1) mod Λ.
-  void issue(int context, std::uint32_t done_bit) {
-    const int slot = due_slot_ == 0 ? latency_ - 1 : due_slot_ - 1;
-    int& count = pending_count_[static_cast<std::size_t>(slot)];
-    pending_[static_cast<std::size_t>(slot)][static_cast<std::size_t>(count++)] =
-        Completion{static_cast<std::uint8_t>(context), done_bit};
+  // The ops issued in this cycle (Λ > 1), in age order as of `retired` retirements since reset:
+  // their done bits are due at the end of cycle t + Λ - 1, whose slot is (t - 1) mod Λ.
+  void issue(const OpMasks& ops, std::uint64_t retired) {
+    InFlight& f = slots_[static_cast<std::size_t>(due_slot_ == 0 ? latency_ - 1 : due_slot_ - 1)];
+    f.ops = ops;
+    f.retired = retired;
+    f.pending = true;
+    ++pending_count_;
   }
 
   // `cycles` clock edges with nothing pending (empty()).
@@ -55,21 +51,28 @@ class IntBlocks {
     due_slot_ = static_cast<int>((static_cast<std::uint64_t>(due_slot_) + cycles) % static_cast<std::uint64_t>(latency_));
   }
 
-  // The clock edge: hands the completions due in this cycle to `apply(context, bit)`.
+  // The clock edge: hands the ops due in this cycle to `apply(ops, retired)`.
   template <class Apply>
   void complete_due(Apply&& apply) {
-    const std::size_t slot = static_cast<std::size_t>(due_slot_);
-    const Completion* due = pending_[slot].data();
-    for (int i = 0; i < pending_count_[slot]; ++i) apply(due[i].context, due[i].bit);
-    pending_count_[slot] = 0;
+    InFlight& f = slots_[static_cast<std::size_t>(due_slot_)];
+    if (f.pending) {
+      apply(f.ops, f.retired);
+      f.pending = false;
+      --pending_count_;
+    }
     due_slot_ = due_slot_ + 1 == latency_ ? 0 : due_slot_ + 1;
   }
 
  private:
+  struct InFlight {
+    OpMasks ops;
+    std::uint64_t retired = 0;
+    bool pending = false;
+  };
   int blocks_;
   int latency_;
-  std::array<std::array<Completion, kMaxBlocks>, kMaxLatency> pending_{};  // by due slot
-  std::array<int, kMaxLatency> pending_count_{};
+  std::array<InFlight, kMaxLatency> slots_{};  // by due slot
+  int pending_count_ = 0;
   int due_slot_ = 0;  // slot of the current cycle: cycle mod latency
 };
 

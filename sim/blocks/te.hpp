@@ -13,6 +13,7 @@
 #include "sim/blocks/cp_buffer.hpp"
 #include "sim/blocks/dpg.hpp"
 #include "sim/blocks/int_blocks.hpp"
+#include "sim/blocks/op_masks.hpp"
 #include "sim/fixed.hpp"
 #include "sim/int_ops.hpp"
 #include "sim/unit_io.hpp"
@@ -36,7 +37,7 @@ struct IssuedOp {
 
 class Te {
  public:
-  static constexpr int kMaxContexts = 16;  // V: the configuration limit (sim/params.cpp)
+  static constexpr int kMaxContexts = OpMasks::kMaxLanes;  // V: the configuration limit (sim/params.cpp)
 
   Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const NumberFormat& format);
 
@@ -45,47 +46,45 @@ class Te {
   int contexts_in_use() const { return count_; }
   int int_blocks() const { return ints_.blocks(); }
   // The head context has every result: it retires unless the VTX FIFO is full.
-  bool head_done() const { return count_ > 0 && contexts_[static_cast<std::size_t>(head_)].done == all_ops_; }
+  bool head_done() const { return count_ > 0 && done_.lane(0) == all_ops_; }
   // The head context waits on results: not all done and no op ready (the registered state: call
   // before schedule(), which takes the issued ops out of the ready masks).
-  bool head_waiting() const {
-    const Context& h = contexts_[static_cast<std::size_t>(head_)];
-    return count_ > 0 && h.done != all_ops_ && h.ready == 0;
-  }
+  bool head_waiting() const { return count_ > 0 && done_.lane(0) != all_ops_ && ready_.lane(0) == 0; }
   bool can_allocate(bool point_available) const { return count_ < n_contexts_ && point_available; }
   // Nothing to issue and no result in flight: without a retirement or an allocation the TE's
   // state stays as it is.
-  bool quiet() const { return ready_slots_ == 0 && ints_.empty(); }
+  bool quiet() const { return !ready_.any(words_) && ints_.empty(); }
   void skip(std::uint64_t cycles) { ints_.skip(cycles); }  // `cycles` quiet clock edges
 
-  // Scheduler of the cycle: issues up to N ready ops; returns how many (the i-th went to INT
-  // block i, described by issued_ops()[i]).
+  // Scheduler of the cycle: issues up to N ready ops — the N lowest set bits of the age-ordered
+  // ready masks — and returns how many (the i-th went to INT block i, issued_ops()[i]).
   int schedule() {
     int issued = 0;
     const int n_blocks = ints_.blocks();
-    // Contexts with a ready op, oldest first: the slot mask rotated so that bit 0 is the head.
-    std::uint32_t by_age = ((ready_slots_ >> head_) | (ready_slots_ << (n_contexts_ - head_))) & slot_mask_;
-    while (by_age != 0 && issued < n_blocks) {
-      int slot = head_ + std::countr_zero(by_age);
-      if (slot >= n_contexts_) slot -= n_contexts_;
-      by_age &= by_age - 1;
-      Context& ctx = contexts_[static_cast<std::size_t>(slot)];
-      while (ctx.ready != 0 && issued < n_blocks) {
-        const int op = std::countr_zero(ctx.ready);
-        ctx.ready &= ctx.ready - 1;
-        issue(ctx, slot, op, issued);
+    issued_head_ = head_;
+    for (int w = 0; w < words_; ++w) {
+      std::uint64_t ready = ready_.word[static_cast<std::size_t>(w)];
+      std::uint64_t take = 0;
+      while (ready != 0 && issued < n_blocks) {
+        const std::uint64_t lowest = ready & (~ready + 1);
+        take |= lowest;
+        ready ^= lowest;
         ++issued;
       }
-      if (ctx.ready == 0) ready_slots_ &= ~(std::uint32_t{1} << slot);
+      ready_.word[static_cast<std::size_t>(w)] = ready;
+      issued_now_.word[static_cast<std::size_t>(w)] = take;
+      issued_.word[static_cast<std::size_t>(w)] |= take;
     }
     // All N blocks taken and a context still has a ready op: it waits for an INT block.
-    left_over_ = ready_slots_ != 0;
+    left_over_ = ready_.any(words_);
     issued_count_ = issued;
+    if (issued > 0 && ints_.latency() > 1) ints_.issue(issued_now_, retired_);
     return issued;
   }
   // Of the last schedule(): a ready op was left unissued because all N INT blocks were taken.
   bool left_over() const { return left_over_; }
-  const IssuedOp* issued_ops() const { return issued_.data(); }
+  // The ops the last schedule() issued, in issue order (decoded on demand: traces and tests).
+  const IssuedOp* issued_ops() const;
 
   // The class of the cycle whose schedule() issued `issued` ops; head_waiting() as it was before
   // schedule(), the other flags from the registered state (doc §10).
@@ -106,28 +105,27 @@ class Te {
               std::uint64_t* allocated_seq);
 
  private:
+  // The values of a context, in its physical slot (the circular queue of the RTL). Its op state
+  // lives in the age-ordered masks below.
   struct Context {
     // The vertex as it will leave the TE, but for pos and nrm (written at retirement from T13
     // and the mode's normal op): weights, lattice point, factor, patch id, last, flags.
     VertexFx tag;
     std::int64_t w = 0;  // third weight, 1 - u - v, used by every INT op
-    std::uint32_t issued = 0, done = 0;  // bit o: op o issued / result written
-    // Ops not issued whose dependences are all done: dependences_met(done) & ~issued, kept up to
-    // date when done or issued change instead of being derived every cycle.
-    std::uint32_t ready = 0;
     std::uint8_t buffer = 0;
     std::uint64_t seq = 0;
   };
 
-  // Ops whose dependences are all done (issued or not), for every done mask: a context's ready
-  // mask after a completion is one load. Only the ops some op depends on (0..11) index the table
-  // (2^12 entries of 16 bits, built at compile time within clang's constexpr step limit).
+  // Ops whose dependences are all done (issued or not), for every done mask of one context: a
+  // lane's ready bits after a completion are one load. Only the ops some op depends on (0..11)
+  // index the table (2^12 entries of 16 bits, built at compile time within clang's constexpr
+  // step limit).
   static constexpr std::uint32_t kDependedOn = [] {
     std::uint32_t m = 0;
     for (const int_ops::IntOp& o : int_ops::kIntOps) m |= o.depends;
     return m;
   }();
-  static_assert(int_ops::kOpCount <= 16 && (kDependedOn & (kDependedOn + 1)) == 0,
+  static_assert(int_ops::kOpCount <= OpMasks::kLaneBits && (kDependedOn & (kDependedOn + 1)) == 0,
                 "kDependencesMet holds 16-bit masks indexed by the low, contiguous depended-on ops");
   static constexpr std::array<std::uint16_t, std::size_t{kDependedOn} + 1> kDependencesMet = [] {
     std::array<std::uint16_t, std::size_t{kDependedOn} + 1> met{};
@@ -136,13 +134,12 @@ class Te {
         if ((done & o.depends) == o.depends) met[done] = static_cast<std::uint16_t>(met[done] | (1u << o.op));
     return met;
   }();
-  static std::uint32_t dependences_met(std::uint32_t done) { return kDependencesMet[done & kDependedOn]; }
-
-  // The op's timing only: its value is computed with the others when the vertex retires.
-  void issue(Context& ctx, int context_slot, int op, int block) {
-    ctx.issued |= std::uint32_t{1} << op;
-    if (ints_.latency() > 1) ints_.issue(context_slot, std::uint32_t{1} << op);  // Λ = 1: issued_ is the list
-    issued_[static_cast<std::size_t>(block)] = IssuedOp{block, context_slot, op, ctx.seq};
+  // The same for the four lanes of a mask word.
+  static std::uint64_t dependences_met(std::uint64_t done) {
+    std::uint64_t met = 0;
+    for (int lane = 0; lane < OpMasks::kLanesPerWord; ++lane)
+      met |= std::uint64_t{kDependencesMet[(done >> OpMasks::shift_of(lane)) & kDependedOn]} << OpMasks::shift_of(lane);
+    return met;
   }
 
   // The values of a vertex's ops. An op's result depends only on its operands, which are the
@@ -182,8 +179,11 @@ class Te {
     out.pos = t[int_ops::kPositionOp];
     out.nrm = t[static_cast<std::size_t>(normal_op_)];
   }
+  // The DPG's current point into the context of age `age` (allocation, once per vertex).
+  [[gnu::noinline]] void allocate_into(int age, ControlPointBuffer& buffers, std::uint64_t* allocated_seq);
 
   int n_contexts_;
+  int words_;  // mask words in use: ceil(V / 4)
   int bary_bits_;
   bool linear_normals_;       // op kLinearNormalOp reads the linear operands
   std::uint32_t all_ops_;     // done mask of a finished vertex
@@ -191,22 +191,38 @@ class Te {
   int normal_op_;             // temporary holding the output normal
   std::array<Context, kMaxContexts> contexts_{};
   int head_ = 0, count_ = 0;
-  std::uint32_t slot_mask_;        // one bit per context slot
-  std::uint32_t ready_slots_ = 0;  // bit s: context slot s has a ready op
+  // Op state in age order. A lane without a context has every issued bit set, so it is never
+  // ready; the lanes beyond V stay that way.
+  OpMasks issued_, done_;
+  OpMasks ready_;  // not issued, every dependence done: done_ and issued_ derive it
+  OpMasks empty_lanes_from_last_;  // all ones in lane V-1 and above: the lane a retirement frees
+  std::uint64_t retired_ = 0;  // retirements since reset (ages of ops in flight move with them)
   std::uint64_t next_seq_ = 0;
   Dpg dpg_;
   IntBlocks ints_;
-  std::array<IssuedOp, IntBlocks::kMaxBlocks> issued_{};
+  OpMasks issued_now_;  // the ops the last schedule() issued
+  int issued_head_ = 0;  // head_ at that schedule()
   bool left_over_ = false;
   int issued_count_ = 0;  // ops the last schedule() issued
+  mutable std::array<IssuedOp, IntBlocks::kMaxBlocks> decoded_{};  // issued_ops()
 };
 
 // Inline: called every cycle from Unit::tick.
 inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer& buffers, std::uint64_t* retired_seq,
                 std::uint64_t* allocated_seq) {
-  // Allocation goes to the tail as registered at the start of the cycle.
-  const int head_start = head_;
   const int count_start = count_;
+
+  // INT results due at the end of this cycle, on the ages as registered: for Λ = 1 the ops this
+  // cycle issued, otherwise those issued Λ - 1 cycles ago (their ages moved down by one per
+  // retirement since; a context with an op in flight cannot retire, so none drops out).
+  if (ints_.latency() == 1) {
+    for (int w = 0; w < words_; ++w) done_.word[static_cast<std::size_t>(w)] |= issued_now_.word[static_cast<std::size_t>(w)];
+  } else {
+    ints_.complete_due([this](OpMasks ops, std::uint64_t retired_at_issue) {
+      ops.shift_down(static_cast<int>(retired_ - retired_at_issue), words_);
+      for (int w = 0; w < words_; ++w) done_.word[static_cast<std::size_t>(w)] |= ops.word[static_cast<std::size_t>(w)];
+    });
+  }
 
   if (retire_into) {
     const Context& h = contexts_[static_cast<std::size_t>(head_)];
@@ -214,54 +230,18 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     if (h.tag.last) buffers.release(h.buffer);
     if (retired_seq) *retired_seq = h.seq;
     head_ = head_ + 1 == n_contexts_ ? 0 : head_ + 1;
+    done_.shift_down(1, words_);
+    issued_.shift_down(1, words_);
+    for (int w = 0; w < words_; ++w)
+      issued_.word[static_cast<std::size_t>(w)] |= empty_lanes_from_last_.word[static_cast<std::size_t>(w)];
+    ++retired_;
   }
 
-  // INT results due at the end of this cycle: issued Λ - 1 cycles ago, or for Λ = 1 the ops
-  // this cycle issued.
-  auto complete = [this](int context, std::uint32_t bit) {
-    Context& c = contexts_[static_cast<std::size_t>(context)];
-    c.done |= bit;
-    // Absent ops (linear normals) are issued from the start, so they never become ready.
-    c.ready = dependences_met(c.done) & ~c.issued;
-    if (c.ready != 0) ready_slots_ |= std::uint32_t{1} << context;
-  };
-  if (ints_.latency() == 1) {
-    for (int i = 0; i < issued_count_; ++i) {
-      const IssuedOp& op = issued_[static_cast<std::size_t>(i)];
-      complete(op.context, std::uint32_t{1} << op.op);
-    }
-    issued_count_ = 0;
-  } else {
-    ints_.complete_due(complete);
-  }
+  if (allocate) allocate_into(count_start - (retire_into ? 1 : 0), buffers, allocated_seq);
 
-  if (allocate) {
-    const ControlPointBuffer::Entry& buf = buffers.rd();
-    int tail = head_start + count_start;
-    if (tail >= n_contexts_) tail -= n_contexts_;
-    Context& ctx = contexts_[static_cast<std::size_t>(tail)];
-    const DpgPoint p = dpg_.point(buf);
-    // pos and nrm are written at retirement.
-    ctx.tag.u = p.u;
-    ctx.tag.v = p.v;
-    ctx.tag.j = p.j;
-    ctx.tag.k = p.k;
-    ctx.tag.L = buf.pattern == TriPattern::uniform ? buf.L : 0;
-    ctx.tag.index = p.index;
-    ctx.tag.id = buf.id;
-    ctx.tag.last = p.last;
-    ctx.tag.flags = buf.cp.flags;
-    ctx.w = p.w;
-    ctx.buffer = static_cast<std::uint8_t>(buffers.rd_ptr());
-    ctx.issued = absent_ops_;
-    ctx.done = absent_ops_;
-    ctx.ready = dependences_met(ctx.done) & ~ctx.issued;
-    if (ctx.ready != 0) ready_slots_ |= std::uint32_t{1} << tail;
-    ctx.seq = next_seq_++;
-    if (allocated_seq) *allocated_seq = ctx.seq;
-    dpg_.consume(buf);
-    if (p.last) buffers.drain();
-  }
+  for (int w = 0; w < words_; ++w)
+    ready_.word[static_cast<std::size_t>(w)] =
+        dependences_met(done_.word[static_cast<std::size_t>(w)]) & ~issued_.word[static_cast<std::size_t>(w)];
   count_ = count_start + (allocate ? 1 : 0) - (retire_into ? 1 : 0);
 }
 
