@@ -187,17 +187,20 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
 
   const bool fast_forward = hooks.fast_forward && observers.empty();
   while (accepted < total) {
-    // A quiet stretch starts with a cycle that issued nothing: only then is it worth asking.
-    if (fast_forward && unit.activity().ops_issued == 0 && !tb.gpe_cycle().accepted) {
-      // Quiet cycles at once, never past the cycle at which the watchdog would fire.
-      const std::uint64_t n = tb.fast_forward(unit, watchdog + 1 - (cycle - last_progress));
+    // A cycle that accepted a vertex is followed by its retirement's refill: not worth asking.
+    if (fast_forward && !tb.gpe_cycle().accepted) {
+      // Quiet cycles at once, never past the cycle at which the watchdog would fire, nor past
+      // the timeline's next boundary while the TE issues (its cycles are not all alike).
+      const std::uint64_t n =
+          tb.fast_forward(unit, watchdog + 1 - (cycle - last_progress), timeline_end - cycle);
       if (n > 0) {
         if (tb.gpe_cycle().spare && accepted > 0) {
           r.gpe_waited += n;
           interval_late = true;
         }
         cycle += n;
-        if (cycle >= timeline_end) {  // the stretch crossed bucket boundaries: its cycles are all alike
+        // A stretch past a boundary is one of identical cycles (an issuing one ends there at most).
+        if (cycle >= timeline_end) {
           const CycleActivity& a = unit.activity();
           r.timeline.close_within(run_totals(unit, tb.gpe()), cycle,
                                   Timeline::quiet_cycle(a.te, a.cpg, tb.gpe_cycle().cls));

@@ -147,24 +147,28 @@ class BasicTestbench {
   }
 
   // Fast-forward (docs/microarchitecture.md §11): in place of up to `limit` inputs()/tick()
-  // pairs, the cycles from now in which neither the DUT nor the GPE moves data, taken at once.
-  // Returns how many (0: the next cycle does something; call inputs() and tick() as usual).
+  // pairs, the cycles from now in which the GPE presents the same values and no data moves
+  // between the DUT's blocks, taken at once (at most `issuing_limit` while the TE issues ops).
+  // Returns how many (0: the next cycle moves data; call inputs() and tick() as usual).
   // Only for sim::Unit: the Verilated RTL has to be clocked cycle by cycle.
-  std::uint64_t fast_forward(Unit& unit, std::uint64_t limit) {
+  std::uint64_t fast_forward(Unit& unit, std::uint64_t limit, std::uint64_t issuing_limit = Unit::kForever) {
     if (pushed_ || limit == 0) return 0;  // inputs() has a triangle to hand over first
     const bool vtx_valid = unit.vtx_valid();
     std::uint64_t n = gpe_.quiet_cycles(vtx_valid);
     if (n == 0) return 0;
-    UnitInputs in = in_;
+    // The inputs held over the stretch (tri_valid and tri as offered; inputs() sets the others
+    // again before any tick()).
     const bool ready = gpe_.ready_now();
-    in.vtx_ready = ready;
-    in.cpg_step = ready && !vtx_valid;
-    n = std::min({n, unit.quiet_cycles(in), limit});
+    in_.vtx_ready = ready;
+    in_.cpg_step = ready && !vtx_valid;
+    n = std::min({n, unit.quiet_cycles(in_), limit});
     if (n == 0) return 0;
-    cycle_ = gpe_.skip(n, vtx_valid, unit.cpg_computing());
+    const bool cpg_computing = unit.cpg_computing();  // holds over the stretch: the countdown bounds it
+    n = unit.skip(n, in_, issuing_limit);
+    if (n == 0) return 0;
+    cycle_ = gpe_.skip(n, vtx_valid, cpg_computing);
     in_.vtx_ready = cycle_.ready;
     in_.cpg_step = cycle_.spare;
-    unit.skip(n, in_);
     return n;
   }
 

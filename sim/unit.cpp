@@ -3,6 +3,7 @@
 // clock edge block by block (docs/microarchitecture.md §2).
 #include "sim/unit.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -109,33 +110,58 @@ void Unit::tick(const UnitInputs& in) {
 std::uint64_t Unit::quiet_cycles(const UnitInputs& in) const {
   if (in.tri_valid && !tri_fifo_.full()) return 0;  // push
   if (in.vtx_ready && !vtx_fifo_.empty()) return 0;  // pop
-  if (!te_.quiet()) return 0;                        // issue or completion
   if (te_.head_done() && !vtx_fifo_.full()) return 0;  // retirement
   if (te_.can_allocate(buffers_.rd_full())) return 0;  // allocation
   return cpg_.repeats(cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step));
 }
 
-void Unit::skip(std::uint64_t n, const UnitInputs& in) {
-  if (n == 0) return;
-  // The decisions of tick(), which quiet_cycles() guarantees are the same in each of the n cycles.
-  const bool head_done = te_.head_done();
+std::uint64_t Unit::skip(std::uint64_t n, const UnitInputs& in, std::uint64_t issuing_limit) {
+  if (n == 0) return 0;
+  // The decisions of tick() outside the TE, which quiet_cycles() guarantees are the same in each
+  // of the n cycles.
   const bool point_available = buffers_.rd_full();
+  const bool vtx_full = vtx_fifo_.full();
+  const bool upstream_busy = cpg_.busy() || !tri_fifo_.empty();
   const CpgAction cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
-  const bool head_waiting = te_.head_waiting();
-  const int issued = te_.schedule();  // issues nothing: the TE is quiet
-  const TeClass te = te_.classify(issued, head_waiting, head_done, vtx_fifo_.full(), point_available,
-                                  cpg_.busy() || !tri_fifo_.empty());
   const CpgClass cpg_class = CpgBlock::classify(cpg);
-  act_.cycle = counters_.cycles() + n - 1;
+  int issued = 0;
+  TeClass te = TeClass::Idle;
+  if (te_.quiet()) {
+    // Nothing issues or completes: n identical cycles at once.
+    const bool head_done = te_.head_done();
+    const bool head_waiting = te_.head_waiting();
+    issued = te_.schedule();  // issues nothing
+    te = te_.classify(issued, head_waiting, head_done, vtx_full, point_available, upstream_busy);
+    counters_.count(0, te, cpg_class, n);
+    te_.skip(n);
+  } else {
+    // The TE issues and completes ops, cycle by cycle, and nothing else moves; the stretch ends
+    // early where the head context finishes with room in the VTX FIFO (a retirement) or the TE
+    // falls quiet (the rest is taken at once by the next call).
+    n = std::min(n, issuing_limit);
+    std::uint64_t cycles = 0;
+    while (cycles < n && !(cycles > 0 && te_.quiet())) {
+      const bool head_done = te_.head_done();
+      if (head_done && !vtx_full) break;
+      const bool head_waiting = te_.head_waiting();
+      issued = te_.schedule();
+      te = te_.classify(issued, head_waiting, head_done, vtx_full, point_available, upstream_busy);
+      counters_.count(issued, te, cpg_class, 1);
+      te_.advance();
+      ++cycles;
+    }
+    n = cycles;
+    if (n == 0) return 0;
+  }
+  act_.cycle = counters_.cycles() - 1;
   act_.ops_issued = issued;
   act_.tri_pushed = act_.vtx_popped = act_.allocated = act_.retired = false;
   act_.te = te;
   act_.cpg = cpg_class;
   act_.cpg_action = cpg;
   act_.cpg_triangle = cpg_.triangle_id();  // a quiet stretch never accepts
-  counters_.count(0, te, cpg_class, n);
-  te_.skip(n);
   cpg_.commit_repeated(cpg, n);
+  return n;
 }
 
 }  // namespace tessim::sim

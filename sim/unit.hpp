@@ -64,14 +64,18 @@ class Unit {
   void tick(const UnitInputs& in);
 
   // Fast-forward (docs/microarchitecture.md §11). quiet_cycles(in): how many cycles in a row,
-  // from now, with these inputs held, would move no data (no push, pop, allocation, issue,
-  // retirement, CPG accept or write) and change only counters and the CPG's countdown; 0 if the
-  // next cycle does something, kForever if nothing ends the quiet stretch but a change of
-  // inputs. skip(n, in), n <= quiet_cycles(in): those n cycles at once, with every counter and
-  // the activity of the last one exactly as n tick(in) calls would leave them.
+  // from now, with these inputs held, would move no data between blocks (no push, pop,
+  // allocation, retirement, CPG accept or write) and change only counters, the CPG's countdown
+  // and the TE's op state; 0 if the next cycle moves data, kForever if nothing ends the stretch
+  // but a change of inputs or the TE. skip(n, in, issuing_limit), n <= quiet_cycles(in): up to
+  // n of those cycles at once — all n when the TE is quiet (nothing to issue, nothing in flight),
+  // else cycle by cycle in the TE alone, at most issuing_limit, ending early where the head
+  // context finishes with room in the VTX FIFO or the TE falls quiet. Returns how many; every
+  // counter, the TE's state and the activity of the last one are exactly as that many tick(in)
+  // calls would leave them.
   static constexpr std::uint64_t kForever = CpgBlock::kForever;
   std::uint64_t quiet_cycles(const UnitInputs& in) const;
-  void skip(std::uint64_t n, const UnitInputs& in);
+  std::uint64_t skip(std::uint64_t n, const UnitInputs& in, std::uint64_t issuing_limit = kForever);
 
   const UnitStats& stats() const { return counters_.stats(); }
   const std::array<std::uint64_t, kTeClasses.size()>& te_class_cycles() const { return counters_.te_class_cycles(); }

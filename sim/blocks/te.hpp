@@ -103,6 +103,11 @@ class Te {
   // sequence numbers of the retired and allocated vertices through the pointers when non-null.
   [[gnu::always_inline]] void commit(VertexFx* retire_into, bool allocate, ControlPointBuffer& buffers, std::uint64_t* retired_seq,
               std::uint64_t* allocated_seq);
+  // The clock edge of a cycle without retirement or allocation: only INT results arrive.
+  void advance() {
+    complete_due();
+    update_ready();
+  }
 
  private:
   // The values of a context, in its physical slot (the circular queue of the RTL). Its op state
@@ -179,6 +184,25 @@ class Te {
     out.pos = t[int_ops::kPositionOp];
     out.nrm = t[static_cast<std::size_t>(normal_op_)];
   }
+  // INT results due at the end of this cycle, on the ages as registered: for Λ = 1 the ops this
+  // cycle issued, otherwise those issued Λ - 1 cycles ago (their ages moved down by one per
+  // retirement since; a context with an op in flight cannot retire, so none drops out).
+  void complete_due() {
+    if (ints_.latency() == 1) {
+      for (int w = 0; w < words_; ++w) done_.word[static_cast<std::size_t>(w)] |= issued_now_.word[static_cast<std::size_t>(w)];
+    } else {
+      ints_.complete_due([this](OpMasks ops, std::uint64_t retired_at_issue) {
+        ops.shift_down(static_cast<int>(retired_ - retired_at_issue), words_);
+        for (int w = 0; w < words_; ++w) done_.word[static_cast<std::size_t>(w)] |= ops.word[static_cast<std::size_t>(w)];
+      });
+    }
+  }
+  // Ready: not issued and every dependence done.
+  void update_ready() {
+    for (int w = 0; w < words_; ++w)
+      ready_.word[static_cast<std::size_t>(w)] =
+          dependences_met(done_.word[static_cast<std::size_t>(w)]) & ~issued_.word[static_cast<std::size_t>(w)];
+  }
   // The DPG's current point into the context of age `age` (allocation, once per vertex).
   [[gnu::noinline]] void allocate_into(int age, ControlPointBuffer& buffers, std::uint64_t* allocated_seq);
 
@@ -212,17 +236,7 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
                 std::uint64_t* allocated_seq) {
   const int count_start = count_;
 
-  // INT results due at the end of this cycle, on the ages as registered: for Λ = 1 the ops this
-  // cycle issued, otherwise those issued Λ - 1 cycles ago (their ages moved down by one per
-  // retirement since; a context with an op in flight cannot retire, so none drops out).
-  if (ints_.latency() == 1) {
-    for (int w = 0; w < words_; ++w) done_.word[static_cast<std::size_t>(w)] |= issued_now_.word[static_cast<std::size_t>(w)];
-  } else {
-    ints_.complete_due([this](OpMasks ops, std::uint64_t retired_at_issue) {
-      ops.shift_down(static_cast<int>(retired_ - retired_at_issue), words_);
-      for (int w = 0; w < words_; ++w) done_.word[static_cast<std::size_t>(w)] |= ops.word[static_cast<std::size_t>(w)];
-    });
-  }
+  complete_due();
 
   if (retire_into) {
     const Context& h = contexts_[static_cast<std::size_t>(head_)];
@@ -239,9 +253,7 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
 
   if (allocate) allocate_into(count_start - (retire_into ? 1 : 0), buffers, allocated_seq);
 
-  for (int w = 0; w < words_; ++w)
-    ready_.word[static_cast<std::size_t>(w)] =
-        dependences_met(done_.word[static_cast<std::size_t>(w)]) & ~issued_.word[static_cast<std::size_t>(w)];
+  update_ready();
   count_ = count_start + (allocate ? 1 : 0) - (retire_into ? 1 : 0);
 }
 
