@@ -53,7 +53,7 @@ class Te {
   bool can_allocate(bool point_available) const { return count_ < n_contexts_ && point_available; }
   // Nothing to issue and no result in flight: without a retirement or an allocation the TE's
   // state stays as it is.
-  bool quiet() const { return !ready_.any(words_) && ints_.empty(); }
+  bool quiet() const { return !any(ready_) && ints_.empty(); }
   void skip(std::uint64_t cycles) { ints_.skip(cycles); }  // `cycles` quiet clock edges
 
   // Scheduler of the cycle: issues up to N ready ops — the N lowest set bits of the age-ordered
@@ -62,8 +62,8 @@ class Te {
     int issued = 0;
     const int n_blocks = ints_.blocks();
     issued_head_ = head_;
-    for (int w = 0; w < words_; ++w) {
-      std::uint64_t ready = ready_.word[static_cast<std::size_t>(w)];
+    for_words([&](std::size_t w) {
+      std::uint64_t ready = ready_.word[w];
       std::uint64_t take = 0;
       while (ready != 0 && issued < n_blocks) {
         const std::uint64_t lowest = ready & (~ready + 1);
@@ -71,12 +71,12 @@ class Te {
         ready ^= lowest;
         ++issued;
       }
-      ready_.word[static_cast<std::size_t>(w)] = ready;
-      issued_now_.word[static_cast<std::size_t>(w)] = take;
-      issued_.word[static_cast<std::size_t>(w)] |= take;
-    }
+      ready_.word[w] = ready;
+      issued_now_.word[w] = take;
+      issued_.word[w] |= take;
+    });
     // All N blocks taken and a context still has a ready op: it waits for an INT block.
-    left_over_ = ready_.any(words_);
+    left_over_ = any(ready_);
     issued_count_ = issued;
     if (issued > 0 && ints_.latency() > 1) ints_.issue(issued_now_, retired_);
     return issued;
@@ -189,19 +189,30 @@ class Te {
   // retirement since; a context with an op in flight cannot retire, so none drops out).
   void complete_due() {
     if (ints_.latency() == 1) {
-      for (int w = 0; w < words_; ++w) done_.word[static_cast<std::size_t>(w)] |= issued_now_.word[static_cast<std::size_t>(w)];
+      for_words([this](std::size_t w) { done_.word[w] |= issued_now_.word[w]; });
     } else {
       ints_.complete_due([this](OpMasks ops, std::uint64_t retired_at_issue) {
         ops.shift_down(static_cast<int>(retired_ - retired_at_issue), words_);
-        for (int w = 0; w < words_; ++w) done_.word[static_cast<std::size_t>(w)] |= ops.word[static_cast<std::size_t>(w)];
+        for_words([&](std::size_t w) { done_.word[w] |= ops.word[w]; });
       });
     }
   }
+  // f(w) for every mask word in use; one word (V <= 4, the usual case) without a loop.
+  template <class F>
+  [[gnu::always_inline]] void for_words(F&& f) const {
+    if (words_ == 1) {
+      f(std::size_t{0});
+    } else {
+      for (int w = 0; w < words_; ++w) f(static_cast<std::size_t>(w));
+    }
+  }
+  bool any(const OpMasks& m) const {
+    if (words_ == 1) return m.word[0] != 0;
+    return m.any(words_);
+  }
   // Ready: not issued and every dependence done.
   void update_ready() {
-    for (int w = 0; w < words_; ++w)
-      ready_.word[static_cast<std::size_t>(w)] =
-          dependences_met(done_.word[static_cast<std::size_t>(w)]) & ~issued_.word[static_cast<std::size_t>(w)];
+    for_words([this](std::size_t w) { ready_.word[w] = dependences_met(done_.word[w]) & ~issued_.word[w]; });
   }
   // The DPG's current point into the context of age `age` (allocation, once per vertex).
   [[gnu::noinline]] void allocate_into(int age, ControlPointBuffer& buffers, std::uint64_t* allocated_seq);
@@ -246,8 +257,7 @@ inline void Te::commit(VertexFx* retire_into, bool allocate, ControlPointBuffer&
     head_ = head_ + 1 == n_contexts_ ? 0 : head_ + 1;
     done_.shift_down(1, words_);
     issued_.shift_down(1, words_);
-    for (int w = 0; w < words_; ++w)
-      issued_.word[static_cast<std::size_t>(w)] |= empty_lanes_from_last_.word[static_cast<std::size_t>(w)];
+    for_words([this](std::size_t w) { issued_.word[w] |= empty_lanes_from_last_.word[w]; });
     ++retired_;
   }
 
