@@ -28,9 +28,6 @@ struct OpMasks {
     std::uint64_t& w = word[static_cast<std::size_t>(a / kLanesPerWord)];
     w = (w & ~(kLane << shift_of(a))) | (std::uint64_t{bits} << shift_of(a));
   }
-  void or_lane(int a, std::uint32_t bits) {
-    word[static_cast<std::size_t>(a / kLanesPerWord)] |= std::uint64_t{bits} << shift_of(a);
-  }
 
   // Lanes move down by `n` (the n oldest drop out) within the first `words` words; the lanes
   // freed at the top are zero.

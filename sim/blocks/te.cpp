@@ -41,7 +41,6 @@ void Te::reset() {
   head_ = count_ = issued_head_ = 0;
   retired_ = 0;
   left_over_ = false;
-  issued_count_ = 0;
   next_seq_ = 0;
   dpg_.reset();
   ints_.reset();

@@ -77,7 +77,6 @@ class Te {
     });
     // All N blocks taken and a context still has a ready op: it waits for an INT block.
     left_over_ = any(ready_);
-    issued_count_ = issued;
     if (issued > 0 && ints_.latency() > 1) ints_.issue(issued_now_, retired_);
     return issued;
   }
@@ -238,7 +237,6 @@ class Te {
   OpMasks issued_now_;  // the ops the last schedule() issued
   int issued_head_ = 0;  // head_ at that schedule()
   bool left_over_ = false;
-  int issued_count_ = 0;  // ops the last schedule() issued
   mutable std::array<IssuedOp, IntBlocks::kMaxBlocks> decoded_{};  // issued_ops()
 };
 
