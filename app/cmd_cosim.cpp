@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
+#include "model/input_file.hpp"
 #include "model/mesh_io.hpp"
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"
@@ -19,10 +20,12 @@
 #include "cosim/wave.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "app/commands.hpp"
+#include "model/progress.hpp"
 #include "app/config_flags.hpp"
 #include "sim/config.hpp"
 #include "cosim/cosim.hpp"
 #include "sim/host.hpp"
+#include "sim/json_input.hpp"
 
 namespace tessim::app {
 
@@ -41,6 +44,8 @@ struct CosimArgs {
   UnitPatternOptions pattern;
   std::string coverage;                 // functional coverage file (accumulated)
   std::vector<std::uint64_t> reset_at;  // cycles of a mid-stream reset
+  int random_resets = 0;                // resets at random cycles (cosim::RandomResets)
+  bool quiet = false;
 };
 
 // A decimal number of cycles, the whole text and nothing else.
@@ -84,6 +89,8 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
 int run(const CosimArgs& a, const ConfigFlags& flags) {
   if (a.seeds < 1 || a.seeds > 1000000)
     throw InputError("command line", "--seeds", std::to_string(a.seeds) + " is outside 1..1000000");
+  if (a.random_resets < 0 || a.random_resets > 1000)
+    throw InputError("command line", "--random-resets", std::to_string(a.random_resets) + " is outside 0..1000");
   // --wave-window: N cycles before a divergence, or an explicit START:END recorded in any run.
   int wave_before = 200;
   std::optional<cosim::WaveWindow> wave_cycles;
@@ -103,10 +110,13 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
                        "'" + a.wave_window + "' is neither a cycle count in 1..10000000 nor START:END");
     wave_before = static_cast<int>(*n);
   }
-  // The waveform is written only after the run: check its format and paths now.
+  // The waveform is written only after the run: check its format and paths now. Its recording is
+  // a temporary, removed when the command fails or is interrupted.
+  std::optional<cosim::WaveTemporaries> wave_temporaries;
   if (!a.wave.empty()) {
     cosim::check_wave_path(a.wave);
     check_output_paths({{"--wave", a.wave}, {"--wave", cosim::gtkw_path(a.wave).string()}});
+    wave_temporaries.emplace(a.wave);
   }
   const sim::UnitConfig cfg = flags.config();  // defaults, --config, the flags given
   const std::string variant = choose_variant(a, flags, cfg);
@@ -142,6 +152,7 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   } else {
     const Mesh mesh = load_mesh(a.mesh);
     if (!cfg.cpg_tags) warn_tags_ignored(mesh, "cosim");
+    else warn_tags_lost(mesh, cfg.format);
     const sim::HostScaling scaling = sim::host_scaling(mesh);
     TessSettings settings;
     settings.L = cfg.tess_factor;
@@ -166,14 +177,10 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   // Functional coverage accumulates into the file across seeds and invocations; it is read
   // (and checked) before the run, so a bad file stops the command before anything runs.
   cosim::FunctionalCoverage coverage;
-  if (!a.coverage.empty() && std::filesystem::exists(a.coverage)) {
-    std::ifstream in(a.coverage);
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(a.coverage, "JSON", e.what());
-    }
+  // (A device or pipe given as the file has nothing to add to.)
+  if (!a.coverage.empty() && output_kind(a.coverage) == OutputKind::File && std::filesystem::exists(a.coverage)) {
+    const std::string text = read_whole_file(a.coverage, kDataFileLimit, "file");
+    const nlohmann::json j = sim::parse_json_text(text, a.coverage);
     coverage = cosim::FunctionalCoverage::from_json(j, a.coverage);
   }
   std::unique_ptr<AtomicOutput> coverage_out;
@@ -182,6 +189,7 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   cosim::CosimOptions opts;
   opts.unit = cfg;
   opts.reset_at = a.reset_at;
+  opts.random_resets.count = a.random_resets;
   if (coverage_out) opts.coverage = &coverage;
   opts.variant = variant;
   opts.wave = a.wave;
@@ -197,8 +205,13 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
                                        cfg.cpg_tags != 0);
       if (pattern) cosim::assign_random_patterns(stream, opts.seed, a.random_max_L, random_partitioning);
     }
-    std::cout << "stream: " << source << "\n";
+    std::cout << "stream: " << source << "\n" << std::flush;
+    std::uint64_t stream_vertices = 0;
+    for (const sim::TriangleFx& t : stream) stream_vertices += static_cast<std::uint64_t>(sim::patch_vertex_count(t));
+    ProgressDisplay progress("cosim", "vertices", stream_vertices, a.quiet);
+    opts.vertices_done = progress.counter();
     const cosim::CosimReport rep = cosim::run_cosim(stream, opts);
+    progress.finish();
     std::cout << cosim::format_report(rep, opts) << std::flush;
     ++run;
     vertices += rep.vertices;
@@ -226,12 +239,13 @@ void register_cosim(CLI::App& app) {
   auto args = std::make_shared<CosimArgs>();
   CLI::App* cmd = app.add_subcommand("cosim", "Lock-step co-simulation of the Verilated RTL against the cycle model");
   cmd->add_option("mesh", args->mesh, "Input mesh (default: Debian's assimp-testmodels Wuson.ply)");
-  cmd->add_option("--random", args->random_count,
+  CLI::Option* random = cmd->add_option("--random", args->random_count,
                   "Use N random triangles (with degenerate ones; with --cpg-tags 1 also random scalar tags) instead "
                   "of a mesh")
       ->transform(number_check<std::size_t>("command line", "--random", type_range<std::size_t>()));
   cmd->add_option("--random-max-L", args->random_max_L, "Largest factor of the random triangles (1..64)")
-      ->transform(number_check<int>("command line", "--random-max-L", "1..64"));
+      ->transform(number_check<int>("command line", "--random-max-L", "1..64"))
+      ->capture_default_str();
   cmd->add_option("--random-extent", args->random_extent,
                   "Scale of the random triangles' positions, clamped to the coordinate range (near 2^I the "
                   "arithmetic saturates)")
@@ -241,22 +255,44 @@ void register_cosim(CLI::App& app) {
   // --seed also seeds the RTL's X randomisation).
   auto flags = std::make_shared<ConfigFlags>(*cmd);
   cmd->add_option("--seeds", args->seeds, "Run this many consecutive seeds (1..1000000)")
-      ->transform(number_check<int>("command line", "--seeds", "1..1000000"));
+      ->transform(number_check<int>("command line", "--seeds", "1..1000000"))
+      ->capture_default_str();
   cmd->add_option("--variant", args->variant, "RTL build to use (see docs/rtl.md)");
   add_unit_pattern_options(*cmd, args->pattern, "cosim");
   cmd->add_flag("--verif", args->verif, "Use the verification build (X randomised)");
   cmd->add_option("--coverage", args->coverage,
                   "Sample functional coverage into this JSON file, adding to what it holds (docs/verification.md, "
                   "Coverage)");
-  cmd->add_option("--reset-at", args->reset_at, "Reset both implementations at these cycles (comma-separated)")
-      ->delimiter(',');
+  // Split here, not by CLI11, which drops empty items: "1,,2" is refused, not read as 1,2.
+  auto reset_at = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--reset-at", *reset_at, "Reset both implementations at these cycles (comma-separated)");
+  cmd->add_option("--random-resets", args->random_resets,
+                  "Reset both implementations this many times at random cycles: in turn anywhere, inside a D3D11 "
+                  "patch's inner rings, with the CPG mid-triangle (0..1000)")
+      ->transform(number_check<int>("command line", "--random-resets", "0..1000"));
   cmd->add_option("--wave", args->wave,
                   "Write a waveform (.fst, or .vcd through gtkwave's fst2vcd) and a gtkwave layout (.gtkw) beside "
                   "it: the cycles before a divergence, or the --wave-window START:END of any run");
   cmd->add_option("--wave-window", args->wave_window,
                   "N: the N cycles before a divergence (1..10000000); START:END: these cycles, passing or not")
       ->capture_default_str();
-  cmd->callback([args, flags]() {
+  cmd->add_flag("--quiet", args->quiet, kQuietHelp);
+  cmd->callback([args, flags, random, reset_at]() {
+    for (const std::string& list : *reset_at) {
+      std::size_t start = 0;
+      for (;;) {
+        const std::size_t comma = list.find(',', start);
+        std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        number_check<std::uint64_t>("command line", "--reset-at", type_range<std::uint64_t>())(item);
+        args->reset_at.push_back(std::stoull(item));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
+    }
+    // --random 0 would silently run the mesh instead: an explicit count must be at least 1.
+    if (random->count() > 0 && args->random_count == 0)
+      throw InputError("command line", "--random", "'0' is outside 1.." + std::to_string(std::numeric_limits<std::size_t>::max()) +
+                                                       " (without --random the mesh is run)");
     const int status = run(*args, *flags);
     if (status != 0) throw CLI::RuntimeError(status);
   });

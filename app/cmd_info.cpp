@@ -45,16 +45,21 @@ void run_info(const InfoArgs& args) {
     j["degenerate_triangles"] = stats.degenerate_triangles;
     j["zero_length_edges"] = stats.zero_length_edges;
     j["normal_fallbacks"] = stats.normal_fallbacks;
+    // Ranges over no vertex are null, not 0 .. 0.
+    auto range = [](std::size_t over, double lo, double hi) {
+      return over == 0 ? nlohmann::json(nullptr) : nlohmann::json{lo, hi};
+    };
     j["tags"] = {{"present", tags.present},
+                 {"acting", tags.tagged + tags.corner_like},
                  {"tagged", tags.tagged},
                  {"crease", tags.crease},
                  {"softened", tags.softened},
                  {"corner_like", tags.corner_like},
                  {"tagged_edges", tags.tagged_edges},
-                 {"sigma", {tags.sigma_min, tags.sigma_max}},
-                 {"theta", {tags.theta_min, tags.theta_max}},
-                 {"beta", {tags.beta_min, tags.beta_max}},
-                 {"delta_length", {tags.delta_min, tags.delta_max}}};
+                 {"sigma", range(tags.tagged, tags.sigma_min, tags.sigma_max)},
+                 {"theta", range(mesh.tags.size(), tags.theta_min, tags.theta_max)},
+                 {"beta", range(tags.tagged, tags.beta_min, tags.beta_max)},
+                 {"delta_length", range(tags.tagged, tags.delta_min, tags.delta_max)}};
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -74,13 +79,21 @@ void run_info(const InfoArgs& args) {
     std::printf("tags                  none (plain PN triangles)\n");
     return;
   }
+  // What `sim` and `cosim` warn of: every vertex whose tags change the surface, tagged or corner-like.
+  std::printf("vertices with tags    %zu (tags that change the surface: tagged + corner-like; sim and cosim "
+              "without --cpg-tags 1 ignore them)\n",
+              tags.tagged + tags.corner_like);
   std::printf("tagged vertices       %zu (crease vector non-zero; %zu edges between two of them)\n", tags.tagged,
               tags.tagged_edges);
   std::printf("crease vertices       %zu (tagged, sigma > 0), %zu softened (tagged, sigma = 0)\n", tags.crease,
               tags.softened);
   std::printf("corner-like vertices  %zu (untagged, theta > 0)\n", tags.corner_like);
+  std::printf("theta                 %.9g .. %.9g (all vertices)\n", tags.theta_min, tags.theta_max);
+  if (tags.tagged == 0) {
+    std::printf("sigma, beta, |crease vector|  none: no tagged vertex\n");
+    return;
+  }
   std::printf("sigma                 %.9g .. %.9g (tagged vertices)\n", tags.sigma_min, tags.sigma_max);
-  std::printf("theta                 %.9g .. %.9g\n", tags.theta_min, tags.theta_max);
   std::printf("beta                  %.9g .. %.9g (tagged vertices)\n", tags.beta_min, tags.beta_max);
   std::printf("|crease vector|       %.9g .. %.9g (tagged vertices)\n", tags.delta_min, tags.delta_max);
 }

@@ -18,6 +18,7 @@
 #include "model/d3d11_pattern.hpp"
 #include "model/error.hpp"
 #include "model/output_file.hpp"
+#include "render/canvas.hpp"
 #include "render/raster.hpp"
 
 namespace tessim::app {
@@ -48,21 +49,19 @@ struct Plane {
 };
 Plane to_plane(double u, double v) { return {u + 0.5 * v, 0.5 * std::sqrt(3.0) * v}; }
 
-void write_svg(const D3D11Pattern& p, Partitioning partitioning, const std::filesystem::path& path) {
+// The picture of the pattern, for SVG and PNG alike (render/canvas.hpp): the domain's triangles,
+// its boundary, the points, the corners, the edge each outer factor subdivides, and a caption.
+Drawing pattern_drawing(const D3D11Pattern& p, Partitioning partitioning) {
   constexpr double kSide = 680.0, kMargin = 60.0;
-  const double width = kSide + 2 * kMargin, height = 0.5 * std::sqrt(3.0) * kSide + 2 * kMargin + 30.0;
-  auto px = [&](double u, double v) {
+  Drawing d;
+  d.width = kSide + 2 * kMargin;
+  d.height = 0.5 * std::sqrt(3.0) * kSide + 2 * kMargin + 30.0;
+  auto at = [&](double u, double v) {
     const Plane q = to_plane(u, v);
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.2f,%.2f", kMargin + kSide * q.x, height - kMargin - kSide * q.y);
-    return std::string(buf);
+    return glm::dvec2(kMargin + kSide * q.x, d.height - kMargin - kSide * q.y);
   };
+  const glm::dvec3 ink(0x1a / 255.0, 0x22 / 255.0, 0x30 / 255.0);
   const D3D11Factors& f = p.factors;
-  AtomicOutput out(path);
-  std::ostream& s = out.stream();
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
-    << "\" viewBox=\"0 0 " << width << " " << height << "\" font-family=\"sans-serif\" font-size=\"15\">\n";
-  s << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
   char title[256];
   if (f.culled)
     std::snprintf(title, sizeof title, "%s: culled (an outer factor <= 0 or NaN)", partitioning_name(partitioning));
@@ -70,134 +69,85 @@ void write_svg(const D3D11Pattern& p, Partitioning partitioning, const std::file
     std::snprintf(title, sizeof title, "%s  outer %g, %g, %g  inner %g  %zu points, %zu triangles",
                   partitioning_name(partitioning), f.outer[0], f.outer[1], f.outer[2], f.inner, p.points.size(),
                   p.triangle_count());
-  s << "<text x=\"" << kMargin << "\" y=\"28\">" << title << "</text>\n";
-  s << "<g fill=\"#dde6f2\" stroke=\"#5b6b80\" stroke-width=\"0.8\" stroke-linejoin=\"round\">\n";
+  d.texts.push_back({{kMargin, 28.0}, title, ink});
   for (std::size_t t = 0; t < p.triangle_count(); ++t) {
-    s << "<polygon points=\"";
+    Drawing::Polygon triangle;
     for (int c = 0; c < 3; ++c) {
       const FixedUV q = p.points[p.indices[3 * t + c]];
-      s << (c ? " " : "") << px(fixed16_to_double(q.u), fixed16_to_double(q.v));
+      triangle.points.push_back(at(fixed16_to_double(q.u), fixed16_to_double(q.v)));
     }
-    s << "\"/>\n";
+    triangle.fill = glm::dvec3(0xdd / 255.0, 0xe6 / 255.0, 0xf2 / 255.0);
+    triangle.stroke = glm::dvec3(0x5b / 255.0, 0x6b / 255.0, 0x80 / 255.0);
+    triangle.stroke_width = 0.8;
+    d.polygons.push_back(std::move(triangle));
   }
-  s << "</g>\n";
-  s << "<polygon points=\"" << px(0, 0) << " " << px(1, 0) << " " << px(0, 1)
-    << "\" fill=\"none\" stroke=\"#1a2230\" stroke-width=\"2\"/>\n";
+  d.polygons.push_back({{at(0, 0), at(1, 0), at(0, 1)}, std::nullopt, ink, 2.0});
   const float max_factor = std::max({f.outer[0], f.outer[1], f.outer[2], f.inner, 1.0f});
   const double radius = std::clamp(kSide / (6.0 * max_factor), 1.2, 5.0);
-  s << "<g fill=\"#b5402a\">\n";
-  for (const FixedUV& q : p.points) {
-    const Plane c = to_plane(fixed16_to_double(q.u), fixed16_to_double(q.v));
-    s << "<circle cx=\"" << kMargin + kSide * c.x << "\" cy=\"" << height - kMargin - kSide * c.y << "\" r=\""
-      << radius << "\"/>\n";
-  }
-  s << "</g>\n";
+  for (const FixedUV& q : p.points)
+    d.dots.push_back({at(fixed16_to_double(q.u), fixed16_to_double(q.v)), radius,
+                      glm::dvec3(0xb5 / 255.0, 0x40 / 255.0, 0x2a / 255.0)});
   // Corners and the edge each outer factor subdivides.
-  const double h = height - kMargin;
-  s << "<text x=\"" << kMargin - 45 << "\" y=\"" << h + 20 << "\">w=1</text>\n";
-  s << "<text x=\"" << kMargin + kSide + 8 << "\" y=\"" << h + 20 << "\">u=1</text>\n";
-  s << "<text x=\"" << kMargin + kSide / 2 - 12 << "\" y=\"" << h - 0.5 * std::sqrt(3.0) * kSide - 10
-    << "\">v=1</text>\n";
+  const double h = d.height - kMargin;
+  d.texts.push_back({{kMargin - 45, h + 20}, "w=1", ink});
+  d.texts.push_back({{kMargin + kSide + 8, h + 20}, "u=1", ink});
+  d.texts.push_back({{kMargin + kSide / 2 - 12, h - 0.5 * std::sqrt(3.0) * kSide - 10}, "v=1", ink});
   if (!f.culled) {
     char label[64];
     std::snprintf(label, sizeof label, "e0=%g (u=0)", f.outer[0]);
-    s << "<text x=\"" << kMargin + kSide * 0.25 - 130 << "\" y=\"" << h - kSide * 0.433 << "\">" << label << "</text>\n";
+    d.texts.push_back({{kMargin + kSide * 0.25 - 130, h - kSide * 0.433}, label, ink});
     std::snprintf(label, sizeof label, "e1=%g (v=0)", f.outer[1]);
-    s << "<text x=\"" << kMargin + kSide / 2 - 45 << "\" y=\"" << h + 24 << "\">" << label << "</text>\n";
+    d.texts.push_back({{kMargin + kSide / 2 - 45, h + 24}, label, ink});
     std::snprintf(label, sizeof label, "e2=%g (w=0)", f.outer[2]);
-    s << "<text x=\"" << kMargin + kSide * 0.75 + 14 << "\" y=\"" << h - kSide * 0.433 << "\">" << label << "</text>\n";
+    d.texts.push_back({{kMargin + kSide * 0.75 + 14, h - kSide * 0.433}, label, ink});
   }
-  s << "</svg>\n";
+  return d;
+}
+
+void write_svg(const Drawing& drawing, const std::filesystem::path& path) {
+  AtomicOutput out(path);
+  out.stream() << to_svg(drawing);
   out.commit();
 }
 
-// PNG through the mesh renderer: the pattern flat in the z = 0 plane facing the camera, every
-// triangle edge drawn, the domain's boundary darker.
-void write_png(const D3D11Pattern& p, const std::filesystem::path& path, const std::string& size_text) {
+// PNG: the same drawing rasterized, scaled to fit --size.
+void write_png(const Drawing& drawing, const std::filesystem::path& path, const std::string& size_text) {
   const glm::ivec2 size = parse_image_size(size_text, "--size");
-  RenderMesh mesh;
-  if (p.factors.culled) {  // nothing to draw but the empty domain
-    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, 0.5 * std::sqrt(3.0), 0}};
-    mesh.triangles = {{0, 1, 2}};
-  } else {
-    for (const FixedUV& q : p.points) {
-      const Plane c = to_plane(fixed16_to_double(q.u), fixed16_to_double(q.v));
-      mesh.positions.emplace_back(c.x, c.y, 0.0);
-    }
-    for (std::size_t t = 0; t < p.triangle_count(); ++t)
-      mesh.triangles.emplace_back(p.indices[3 * t], p.indices[3 * t + 1], p.indices[3 * t + 2]);
-  }
-  mesh.normals.assign(mesh.positions.size(), glm::dvec3(0, 0, 1));
-  mesh.edge_flags.assign(mesh.triangles.size(), 0);
-  auto on_boundary = [&](const glm::dvec3& a, const glm::dvec3& b) {
-    const glm::dvec3 points[2] = {a, b};
-    for (int e = 0; e < 3; ++e) {  // both ends on the same domain edge, tested exactly in 16.16
-      bool all = true;
-      for (const glm::dvec3& q : points) {
-        const double v = q.y / (0.5 * std::sqrt(3.0)), u = q.x - 0.5 * v;
-        const double coordinate = e == 0 ? u : e == 1 ? v : 1.0 - u - v;
-        all = all && std::abs(coordinate) < 0.5 / 65536.0;
-      }
-      if (all) return true;
-    }
-    return false;
-  };
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int c = 0; c < 3; ++c)
-      if (on_boundary(mesh.positions[mesh.triangles[t][c]], mesh.positions[mesh.triangles[t][(c + 1) % 3]]))
-        mesh.edge_flags[t] |= static_cast<std::uint8_t>(1u << c);
-  validate(mesh, "pattern");
-
-  ViewAngles view;
-  view.azimuth_deg = 0.0;
-  view.elevation_deg = 0.0;
-  const Camera camera = frame_camera(mesh.positions, view, size.x, size.y);
-  RenderOptions options;
-  options.width = size.x;
-  options.height = size.y;
-  options.wireframe = true;
-  options.wire_width_px = 2.0;
-  options.wire_opacity = 1.0;
-  // Unlit: the plane faces the camera, so shading would only tint it.
-  options.albedo = {0.80, 0.86, 0.94};
-  options.ambient = 1.0;
-  options.diffuse = 0.0;
-  options.specular = 0.0;
-  write_image(render(mesh, camera, options), path);
+  write_image(rasterize(drawing, size.x, size.y), path);
 }
 
-void print_text(const D3D11Pattern& p, Partitioning partitioning, Winding winding) {
+void print_text(const D3D11Pattern& p, Partitioning partitioning, Winding winding, std::FILE* out) {
   const D3D11Factors& f = p.factors;
-  std::printf("partitioning   %s\n", partitioning_name(partitioning));
-  std::printf("winding        %s\n", winding_name(winding));
+  std::fprintf(out, "partitioning   %s\n", partitioning_name(partitioning));
+  std::fprintf(out, "winding        %s\n", winding_name(winding));
   if (f.culled) {
-    std::printf("culled         yes: an outer factor is <= 0 or NaN; no points, no triangles\n");
+    std::fprintf(out, "culled         yes: an outer factor is <= 0 or NaN; no points, no triangles\n");
     return;
   }
   auto parity = [](bool odd) { return odd ? "odd" : "even"; };
   for (int e = 0; e < 3; ++e)
-    std::printf("outer e%d       %-10g (16.16 %s, %s, %d points on edge %s=0)\n", e, f.outer[e],
-                hex(f.outer_fixed[e]).c_str(), parity(f.outer_odd[e]), f.outer_points[e], e == 0 ? "u" : e == 1 ? "v" : "w");
+    std::fprintf(out, "outer e%d       %-10g (16.16 %s, %s, %d points on edge %s=0)\n", e, f.outer[e],
+                 hex(f.outer_fixed[e]).c_str(), parity(f.outer_odd[e]), f.outer_points[e], e == 0 ? "u" : e == 1 ? "v" : "w");
   if (f.single_triangle)
-    std::printf("inner          %-10g (16.16 %s): all factors 1, the domain triangle itself\n", f.inner,
-                hex(f.inner_fixed).c_str());
+    std::fprintf(out, "inner          %-10g (16.16 %s): all factors 1, the domain triangle itself\n", f.inner,
+                 hex(f.inner_fixed).c_str());
   else
-    std::printf("inner          %-10g (16.16 %s, %s, %d points per inner edge)\n", f.inner, hex(f.inner_fixed).c_str(),
-                parity(f.inner_odd), f.inner_points);
-  std::printf("points         %zu\n", p.points.size());
-  std::printf("triangles      %zu\n", p.triangle_count());
-  std::printf("\n# point  u  v  (16.16: u v)\n");
+    std::fprintf(out, "inner          %-10g (16.16 %s, %s, %d points per inner edge)\n", f.inner, hex(f.inner_fixed).c_str(),
+                 parity(f.inner_odd), f.inner_points);
+  std::fprintf(out, "points         %zu\n", p.points.size());
+  std::fprintf(out, "triangles      %zu\n", p.triangle_count());
+  std::fprintf(out, "\n# point  u  v  (16.16: u v)\n");
   for (std::size_t i = 0; i < p.points.size(); ++i) {
     const FixedUV q = p.points[i];
-    std::printf("%zu %.10f %.10f %s %s\n", i, fixed16_to_double(q.u), fixed16_to_double(q.v), hex(q.u).c_str(),
-                hex(q.v).c_str());
+    std::fprintf(out, "%zu %.10f %.10f %s %s\n", i, fixed16_to_double(q.u), fixed16_to_double(q.v), hex(q.u).c_str(),
+                 hex(q.v).c_str());
   }
-  std::printf("\n# triangle  i0 i1 i2\n");
+  std::fprintf(out, "\n# triangle  i0 i1 i2\n");
   for (std::size_t t = 0; t < p.triangle_count(); ++t)
-    std::printf("%zu %u %u %u\n", t, p.indices[3 * t], p.indices[3 * t + 1], p.indices[3 * t + 2]);
+    std::fprintf(out, "%zu %u %u %u\n", t, p.indices[3 * t], p.indices[3 * t + 1], p.indices[3 * t + 2]);
 }
 
-void print_json(const D3D11Pattern& p, Partitioning partitioning, Winding winding) {
+void print_json(const D3D11Pattern& p, Partitioning partitioning, Winding winding, std::FILE* out) {
   const D3D11Factors& f = p.factors;
   nlohmann::json j;
   j["points"] = nlohmann::json::array();
@@ -216,7 +166,7 @@ void print_json(const D3D11Pattern& p, Partitioning partitioning, Winding windin
     j["outer_fixed"] = f.outer_fixed;
     j["inner_fixed"] = f.inner_fixed;
   }
-  std::cout << j.dump() << "\n";
+  std::fprintf(out, "%s\n", j.dump().c_str());
 }
 
 void run_pattern(const PatternArgs& args) {
@@ -225,20 +175,24 @@ void run_pattern(const PatternArgs& args) {
   const float inner = parse_factor("pattern", "--inner", args.inner);
   const Partitioning partitioning = parse_partitioning_option("pattern", args.partitioning);
   const auto winding = parse_winding(args.winding);
-  if (!winding) throw InputError("pattern", "--winding", "'" + args.winding + "' is not one of ccw, cw");
+  if (!winding) throw InputError("command line", "--winding", "'" + args.winding + "' is not one of ccw, cw");
   const std::filesystem::path output = args.output;
   std::string extension = output.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  // Standard output, a device or a pipe without an extension gets SVG; the text then goes to stderr.
+  const OutputKind kind = output_kind(output);
+  if (!args.output.empty() && kind != OutputKind::File && extension != ".png") extension = ".svg";
   if (!args.output.empty() && extension != ".svg" && extension != ".png")
     throw InputError(args.output, "output", "unsupported extension '" + output.extension().string() + "' (use .svg or .png)");
   if (extension == ".png") parse_image_size(args.size, "--size");
 
   const D3D11Pattern p = d3d11_tri_pattern(outer, inner, partitioning, *winding);
-  if (extension == ".svg") write_svg(p, partitioning, output);
-  if (extension == ".png") write_png(p, output, args.size);
+  if (extension == ".svg") write_svg(pattern_drawing(p, partitioning), output);
+  if (extension == ".png") write_png(pattern_drawing(p, partitioning), output, args.size);
 
-  if (args.json) print_json(p, partitioning, *winding);
-  else print_text(p, partitioning, *winding);
+  std::FILE* text = !args.output.empty() && kind == OutputKind::Stdout ? stderr : stdout;
+  if (args.json) print_json(p, partitioning, *winding, text);
+  else print_text(p, partitioning, *winding, text);
 }
 
 }  // namespace
@@ -253,7 +207,7 @@ void register_pattern(CLI::App& app) {
   cmd->add_option("--winding", args->winding, "Triangle order: ccw (positive area in the u,v plane) or cw")
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "One JSON object: points [[u, v], ...], indices [i0, i1, i2, ...], ...");
-  cmd->add_option("-o,--output", args->output, "Also write a picture: .svg, or .png (rendered, see --size)");
+  cmd->add_option("-o,--output", args->output, "Also write a picture: .svg, or .png (the same picture rasterized, see --size)");
   cmd->add_option("--size", args->size, "PNG size WxH (1..8192 each)")->capture_default_str();
   cmd->callback([args] { run_pattern(*args); });
 }

@@ -1,6 +1,8 @@
 // tessim render: pictures of a PN tessellation, optionally next to the flat-shaded input mesh
 // (and, for a scalar-tagged mesh, next to plain PN), optionally coloured by a measured error
 // with a colour bar, under a caption.
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -14,10 +16,14 @@
 #include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
+#include "model/input_file.hpp"
+#include "model/output_file.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/normal_mode.hpp"
 #include "model/pattern.hpp"
+#include "model/progress.hpp"
+#include "model/factors.hpp"
 #include "model/tessellate.hpp"
 #include "app/commands.hpp"
 #include "render/annotate.hpp"
@@ -53,7 +59,17 @@ struct RenderArgs {
   std::string up = "y";
   bool no_supersample = false;
   std::string output;
+  bool quiet = false;
 };
+
+// The wireframe's colour for a factor at `t` in [0, 1] of the scale: dark blue (coarse) through
+// red to orange (fine), dark and saturated enough to read on the surface's light shading.
+glm::dvec3 factor_colour(double t) {
+  constexpr glm::dvec3 kStops[] = {{0.02, 0.05, 0.45}, {0.35, 0.02, 0.40}, {0.75, 0.03, 0.05}, {0.95, 0.45, 0.0}};
+  const double x = std::clamp(std::isnan(t) ? 0.0 : t, 0.0, 1.0) * 3.0;
+  const int i = std::min(2, static_cast<int>(x));
+  return glm::mix(kStops[i], kStops[i + 1], x - i);
+}
 
 // The input mesh with one face normal per triangle: the faceted look of the coarse mesh.
 RenderMesh flat_shaded(const Mesh& mesh) {
@@ -78,12 +94,16 @@ RenderMesh flat_shaded(const Mesh& mesh) {
 
 // What a heat map colours by: one value per vertex of a patch.
 using PatchScalars = std::function<void(const PatchView&, std::span<double>)>;
+// The wireframe colour of a patch's triangles (empty: the one wire colour).
+using PatchWireColour = std::function<glm::dvec3(const PatchView&)>;
 
 // The PN tessellation of every input triangle, patch boundaries flagged as primary edges so
 // that the wireframe shows the input triangles darker than the refinement inside them; with
-// `scalars`, each vertex also gets its value.
+// `scalars`, each vertex also gets its value, with `wire_colour` each triangle its wire colour.
+// `done` (progress) counts the vertices tessellated.
 RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const TessellationCounts& counts,
-                          NormalMode mode, const PatchScalars& scalars = {}) {
+                          NormalMode mode, std::atomic<std::uint64_t>* done, const PatchScalars& scalars = {},
+                          const PatchWireColour& wire_colour = {}) {
   // An edge of the pattern lies on the patch boundary when both ends are on one side of the
   // domain (u = 0, v = 0 or w = 0).
   auto on_same_side = [](const glm::dvec2& p, const glm::dvec2& q) {
@@ -113,6 +133,8 @@ RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const 
       out.triangles.push_back(t + glm::uvec3(base));
       out.edge_flags.push_back(flags);
     }
+    if (wire_colour) out.wire_colours.resize(out.triangles.size(), wire_colour(patch));
+    if (done) done->fetch_add(patch.positions.size(), std::memory_order_relaxed);
   });
   return out;
 }
@@ -125,7 +147,7 @@ ColourMode parse_colour_mode(const std::string& text) {
   if (text == "error-normal") return ColourMode::ErrorNormal;
   if (text == "pn-vs-flat") return ColourMode::PnVsFlat;
   if (text == "stpn-vs-pn") return ColourMode::StpnVsPn;
-  throw InputError("render", "--color",
+  throw InputError("command line", "--color",
                    "'" + text + "' is not one of shaded, error-position, error-normal, pn-vs-flat, stpn-vs-pn");
 }
 
@@ -144,7 +166,7 @@ ComparePanels parse_compare(const std::string& text) {
   while (std::getline(list, item, ',')) {
     if (item == "flat" && !c.flat) c.flat = true;
     else if (item == "pn" && !c.pn) c.pn = true;
-    else throw InputError("render", "--compare", "'" + text + "' is not one of flat, pn, flat,pn");
+    else throw InputError("command line", "--compare", "'" + text + "' is not one of flat, pn, flat,pn");
   }
   return c;
 }
@@ -154,11 +176,7 @@ ComparePanels parse_compare(const std::string& text) {
 sim::UnitConfig unit_config(const std::string& path, NormalMode mode) {
   sim::UnitConfig cfg;
   if (!path.empty()) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "file", "cannot be read");
-    std::stringstream text;
-    text << in.rdbuf();
-    sim::apply_json(cfg, sim::parse_config_text(text.str(), path), path);
+    sim::apply_json(cfg, sim::parse_config_text(read_whole_file(path, kConfigFileLimit, "file"), path), path);
   }
   cfg.normals = mode;
   cfg.validate(path.empty() ? "configuration" : path);
@@ -220,24 +238,24 @@ void run_render(const RenderArgs& args) {
   const ComparePanels compare = parse_compare(args.compare);
   const ColourMode colour = parse_colour_mode(args.color);
   if (is_error_mode(colour) && settings.kind != PatternKind::Uniform)
-    throw InputError("render", "--color",
+    throw InputError("command line", "--color",
                      args.color + " measures the unit, which tessellates with the uniform pattern: use -L");
   if (is_error_mode(colour) && mode == NormalMode::Derivative)
-    throw InputError("render", "--normals", "the unit has no derivative normals (float reference only)");
+    throw InputError("command line", "--normals", "the unit has no derivative normals (float reference only)");
   if (!(args.color_max >= 0.0) || !std::isfinite(args.color_max))
-    throw InputError("render", "--color-max", "must be a positive finite number");
+    throw InputError("command line", "--color-max", "must be a positive finite number");
   if (!args.config.empty() && !is_error_mode(colour))
-    throw InputError("render", "--config", "only the error colour modes use the unit's configuration");
+    throw InputError("command line", "--config", "only the error colour modes use the unit's configuration");
   const sim::UnitConfig cfg = is_error_mode(colour) ? unit_config(args.config, mode) : sim::UnitConfig{};
   ViewAngles view;
   view.azimuth_deg = args.azimuth;
   view.elevation_deg = args.elevation;
   if (args.up == "y" || args.up == "Y") view.up = UpAxis::Y;
   else if (args.up == "z" || args.up == "Z") view.up = UpAxis::Z;
-  else throw InputError("render", "--up", "'" + args.up + "' is not one of y, z");
-  if (!std::isfinite(view.azimuth_deg)) throw InputError("render", "--azimuth", "not a finite angle");
+  else throw InputError("command line", "--up", "'" + args.up + "' is not one of y, z");
+  if (!std::isfinite(view.azimuth_deg)) throw InputError("command line", "--azimuth", "not a finite angle");
   if (!std::isfinite(view.elevation_deg) || std::abs(view.elevation_deg) > 90.0)
-    throw InputError("render", "--elevation", "must be within -90..90 degrees");
+    throw InputError("command line", "--elevation", "must be within -90..90 degrees");
   const std::filesystem::path output = args.output;
   if (!is_supported_image(output))
     throw InputError(output.string(), "output",
@@ -278,7 +296,30 @@ void run_render(const RenderArgs& args) {
     scalars = distance_to(mesh, mode, colour, diagonal);
   }
 
+  // Adaptive factors in the wireframe: each patch's edges coloured by its factor (the inner one,
+  // the largest of its edges), so that the density gradient shows, with a colour bar.
+  ColourScale factor_scale;
+  PatchWireColour wire_colour;
+  const bool factor_wires = args.wireframe && settings.kind == PatternKind::D3D11 &&
+                            settings.source == FactorSource::Adaptive;
+  if (factor_wires) {
+    float lo = 64.0f, hi = 1.0f;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const float f = patch_factors(settings, mesh, t).inner;
+      lo = std::min(lo, f);
+      hi = std::max(hi, f);
+    }
+    factor_scale.lo = std::min<double>(lo, hi);
+    factor_scale.hi = hi > factor_scale.lo ? hi : factor_scale.lo + 1.0;
+    factor_scale.title = "wireframe colour: tessellation factor of the patch (its largest edge factor)";
+    wire_colour = [&settings, &mesh, factor_scale](const PatchView& patch) {
+      return factor_colour(factor_scale.position(patch_factors(settings, mesh, patch.triangle).inner));
+    };
+  }
+
   const std::string surface = tagged ? "STPN" : "PN";
+  ProgressDisplay tessellation_progress("render: tessellate", "vertices",
+                                        counts.vertices * (1 + static_cast<std::uint64_t>(compare.pn)), args.quiet);
   std::vector<RenderMesh> panels;
   std::vector<std::string> labels;
   if (compare.flat) {
@@ -286,11 +327,12 @@ void run_render(const RenderArgs& args) {
     labels.push_back("flat input");
   }
   if (compare.pn) {
-    panels.push_back(pn_tessellated(plain, settings, counts, mode));
+    panels.push_back(pn_tessellated(plain, settings, counts, mode, tessellation_progress.counter(), {}, wire_colour));
     labels.push_back("PN (tags ignored)");
   }
-  panels.push_back(pn_tessellated(main_mesh, settings, counts, mode, scalars));
+  panels.push_back(pn_tessellated(main_mesh, settings, counts, mode, tessellation_progress.counter(), scalars, wire_colour));
   labels.push_back(surface);
+  tessellation_progress.finish();
 
   // One camera for all panels, framed on everything drawn (the PN surface bulges beyond the
   // input vertices).
@@ -378,32 +420,43 @@ void run_render(const RenderArgs& args) {
     }
   }
   const Image caption_image = caption.empty() ? Image() : caption_strip(caption, total_width, options.background, text_scale);
-  const Image bar_image = heat ? colour_bar_strip(scale, total_width, options.background, text_scale) : Image();
+  Image bar_image = heat ? colour_bar_strip(scale, total_width, options.background, text_scale) : Image();
+  if (factor_wires) {
+    const Image factor_bar = colour_bar_strip(factor_scale, total_width, options.background, text_scale,
+                                              factor_colour);
+    bar_image = heat ? stack(bar_image, factor_bar) : factor_bar;
+  }
 
   ImageFileWriter writer(output, total_width, caption_image.height + size.y + bar_image.height);
   if (caption_image.height > 0) writer.write_rows(caption_image);
   constexpr int kRowsPerWrite = 64;
+  ProgressDisplay raster_progress("render: raster", "rows", static_cast<std::uint64_t>(size.y), args.quiet);
   for (int y = 0; y < size.y; y += kRowsPerWrite) {
     const int y_end = std::min(size.y, y + kRowsPerWrite);
     Image band = renderers.front()->render_rows(y, y_end);
     for (std::size_t i = 1; i < renderers.size(); ++i)
       band = side_by_side(band, renderers[i]->render_rows(y, y_end), separator);
     writer.write_rows(band);
+    if (raster_progress.counter()) raster_progress.counter()->fetch_add(static_cast<std::uint64_t>(y_end - y));
   }
+  raster_progress.finish();
   if (bar_image.height > 0) writer.write_rows(bar_image);
   writer.finish();
 
-  std::printf("wrote %s: %dx%d, %zu input triangles, %zu %s triangles (%s, %s normals)",
-              output.string().c_str(), total_width, caption_image.height + size.y + bar_image.height,
-              mesh.triangles.size(), panels.back().triangles.size(), surface.c_str(), settings.describe().c_str(),
-              std::string(to_string(mode)).c_str());
-  for (std::size_t i = 0; i + 1 < labels.size(); ++i) std::printf("%s%s", i == 0 ? ", left: " : " | ", labels[i].c_str());
-  std::printf("\n");
+  // The image on standard output: the summary goes to stderr.
+  std::FILE* summary = output_kind(output) == OutputKind::Stdout ? stderr : stdout;
+  std::fprintf(summary, "wrote %s: %dx%d, %zu input triangles, %zu %s triangles (%s, %s normals)",
+               output_name(output).c_str(), total_width, caption_image.height + size.y + bar_image.height,
+               mesh.triangles.size(), panels.back().triangles.size(), surface.c_str(), settings.describe().c_str(),
+               std::string(to_string(mode)).c_str());
+  for (std::size_t i = 0; i + 1 < labels.size(); ++i)
+    std::fprintf(summary, "%s%s", i == 0 ? ", left: " : " | ", labels[i].c_str());
+  std::fprintf(summary, "\n");
   if (chosen_view)
-    std::printf("view     azimuth %.0f, elevation %.0f degrees: the side showing most detail\n",
-                view.azimuth_deg, view.elevation_deg);
+    std::fprintf(summary, "view     azimuth %.0f, elevation %.0f degrees: the side showing most detail\n",
+                 view.azimuth_deg, view.elevation_deg);
   if (heat)
-    std::printf("colour   %s: 0 .. %.3g (largest value %.9g)\n", args.color.c_str(), scale.hi, largest);
+    std::fprintf(summary, "colour   %s: 0 .. %.3g (largest value %.9g)\n", args.color.c_str(), scale.hi, largest);
 }
 
 }  // namespace
@@ -425,7 +478,7 @@ void register_render(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--color-max", args->color_max,
                   "Top of the colour bar (0: the largest value); fixes the scale across pictures")
-      ->transform(number_check<double>("render", "--color-max", "positive finite numbers"))
+      ->transform(number_check<double>("command line", "--color-max", "positive finite numbers"))
       ->capture_default_str();
   cmd->add_option("--config", args->config,
                   "Unit configuration file (number format) for the error colour modes (default: defaults)");
@@ -436,17 +489,19 @@ void register_render(CLI::App& app) {
   cmd->add_option("--size", args->size, "Image size WxH per panel (1..8192 each)")->capture_default_str();
   CLI::Option* azimuth =
       cmd->add_option("--azimuth", args->azimuth,
-                      "View angle around the up axis, degrees from the front (default: of 8 azimuths 45 degrees "
-                      "apart, the one showing most detail: small input triangles face-on)")
-          ->transform(number_check<double>("render", "--azimuth", "the finite numbers"))
-          ->capture_default_str();
-  CLI::Option* elevation = cmd->add_option("--elevation", args->elevation, "View angle above the horizon, degrees (-90..90)")
-                               ->transform(number_check<double>("render", "--elevation", "-90..90"))
-                               ->capture_default_str();
+                      "View angle around the up axis, degrees from the front (default: the automatic best view: "
+                      "of 8 azimuths 45 degrees apart, the one showing most detail, small input triangles face-on; "
+                      "35 when only --elevation is given)")
+          ->transform(number_check<double>("command line", "--azimuth", "the finite numbers"));
+  CLI::Option* elevation =
+      cmd->add_option("--elevation", args->elevation,
+                      "View angle above the horizon, degrees, -90..90 (default: the automatic best view's, 25)")
+          ->transform(number_check<double>("command line", "--elevation", "-90..90"));
   cmd->add_option("--up", args->up, "Up axis of the model: y or z (front is +Z or -Y)")->capture_default_str();
   cmd->add_flag("--no-supersample", args->no_supersample, "One sample per pixel instead of 2x2");
   cmd->add_option("-o,--output", args->output, "Output image: .png (8-bit sRGB) or .exr (half-float linear)")
       ->required();
+  cmd->add_flag("--quiet", args->quiet, kQuietHelp);
   cmd->callback([args, azimuth, elevation] {
     args->view_given = azimuth->count() > 0 || elevation->count() > 0;
     run_render(*args);

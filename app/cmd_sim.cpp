@@ -19,6 +19,7 @@
 #include "model/mesh_io.hpp"
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"
+#include "model/progress.hpp"
 #include "model/tessellate.hpp"
 #include "model/weld.hpp"
 #include "app/commands.hpp"
@@ -45,6 +46,7 @@ struct SimArgs {
   bool schedule = false;
   bool errors = false;
   bool no_fast_forward = false;
+  bool quiet = false;
   std::string chunks = "1";  // K, or auto
   UnitPatternOptions pattern;
 };
@@ -152,6 +154,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
 
   const Mesh mesh = load_mesh(a.mesh);
   if (!cfg.cpg_tags) warn_tags_ignored(mesh, "sim");
+  else warn_tags_lost(mesh, cfg.format);
   const sim::MeshPatterns patterns(pattern ? &*pattern : nullptr);
   const std::uint64_t triangles = mesh.triangle_count();
   if (chunks == 0)
@@ -221,6 +224,8 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     hooks.observers.push_back(schedule.get());
   }
 
+  ProgressDisplay progress("sim", "vertices", out_vertices, a.quiet);
+  hooks.vertices_done = progress.counter();
   sim::SimResult result;
   if (chunks == 1) {
     result = sim::simulate(mesh, cfg, hooks, patterns);
@@ -229,9 +234,11 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     // output once the chunks before it are written.
     std::vector<std::unique_ptr<PatchSpool>> spools(static_cast<std::size_t>(chunks));
     if (emit) {
+      // Beside the output file, or in the temporary directory for standard output, a device or a pipe.
       const std::filesystem::path near =
-          a.output == "-" ? std::filesystem::temp_directory_path() / ("tessim-sim-" + std::to_string(::getpid()))
-                          : std::filesystem::path(a.output);
+          output_kind(a.output) != OutputKind::File
+              ? std::filesystem::temp_directory_path() / ("tessim-sim-" + std::to_string(::getpid()))
+              : resolve_output_path(a.output);
       for (int k = 1; k < chunks; ++k) {
         std::filesystem::path spool = near;
         spool += ".chunk" + std::to_string(k);
@@ -255,6 +262,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     };
     result = sim::simulate_chunked(mesh, cfg, chunks, callbacks, patterns);
   }
+  progress.finish();
 
   // All outputs are complete in memory or in temporaries: move them into place (the small
   // statistics are written out first, so that the renames are all that is left to fail).
@@ -266,17 +274,22 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   if (welder) welder->write(a.output);
   if (trace) trace->finish();
   if (stats) stats->commit();
-  std::cout << sim::summary(result);
+  // An output on standard output: the summary goes to stderr.
+  const bool output_on_stdout = output_kind(a.output) == OutputKind::Stdout ||
+                                output_kind(a.trace) == OutputKind::Stdout || output_kind(a.stats) == OutputKind::Stdout;
+  std::ostream& report = output_on_stdout ? std::cerr : std::cout;
+  report << sim::summary(result);
   if (welder)
-    std::printf("welded   %llu output vertices into %llu distinct vertices (bit-identical positions and normals)\n",
-                static_cast<unsigned long long>(welder->vertices_in()),
-                static_cast<unsigned long long>(welder->vertices_out()));
+    report << "welded   " << welder->vertices_in() << " output vertices into " << welder->vertices_out()
+           << " distinct vertices (bit-identical positions and normals)\n";
   if (schedule) {
-    std::cout << "\nissue schedule (v<vertex>.<op>, first cycles from the first issue):\n"
-              << schedule->table(cfg.int_blocks);
-    std::printf("steady state: %.3f cycles per vertex (retirement interval over 2520-vertex "
-                "periods of the first 8192 vertices, docs/schedule.md)\n",
-                schedule->steady_cycles_per_vertex());
+    char steady[200];
+    std::snprintf(steady, sizeof steady,
+                  "steady state: %.3f cycles per vertex (retirement interval over 2520-vertex "
+                  "periods of the first 8192 vertices, docs/schedule.md)\n",
+                  schedule->steady_cycles_per_vertex());
+    report << "\nissue schedule (v<vertex>.<op>, first cycles from the first issue):\n"
+           << schedule->table(cfg.int_blocks) << steady;
   }
 }
 
@@ -316,6 +329,7 @@ void register_sim(CLI::App& app) {
   sub->add_flag("--no-fast-forward", args->no_fast_forward,
                 "clock every cycle one by one instead of taking the cycles in which nothing moves at once "
                 "(same results, slower; docs/microarchitecture.md §11)");
+  sub->add_flag("--quiet", args->quiet, kQuietHelp);
   sub->callback([args, flags] { run_sim(*args, *flags); });
 }
 

@@ -11,7 +11,9 @@
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/normal_mode.hpp"
+#include "model/output_file.hpp"
 #include "model/pattern.hpp"
+#include "model/progress.hpp"
 #include "model/tessellate.hpp"
 #include "model/weld.hpp"
 #include "app/commands.hpp"
@@ -26,6 +28,7 @@ struct TessellateArgs {
   std::string normals = "quadratic";
   std::string output;
   bool weld = false;
+  bool quiet = false;
 };
 
 void run_tessellate(const TessellateArgs& args) {
@@ -38,9 +41,9 @@ void run_tessellate(const TessellateArgs& args) {
                          "' (use .ply or .obj, or - for standard output)");
   // "-": binary PLY on standard output (compute measured apart from the file system, or piped);
   // the summary then goes to standard error.
-  const bool to_stdout = args.output == "-";
+  const bool to_stdout = output_kind(args.output) == OutputKind::Stdout;
   if (to_stdout && args.weld)
-    throw InputError("tessellate", "--weld", "writes a file: give -o OUT.ply or OUT.obj");
+    throw InputError("command line", "--weld", "writes a file: give -o OUT.ply or OUT.obj");
   if (!to_stdout) check_output_paths({{"-o", args.output}});
   std::FILE* report = to_stdout ? stderr : stdout;
 
@@ -48,6 +51,8 @@ void run_tessellate(const TessellateArgs& args) {
   PatternCache patterns(settings);
   const TessellationCounts counts = count_tessellation(mesh, patterns);
   TessellationSummary summary;
+  ProgressDisplay progress("tessellate", "vertices", counts.vertices, args.quiet);
+  std::atomic<std::uint64_t>* done = progress.counter();
   if (args.weld) {
     // Shared corners and edge points once (model/weld.hpp); the mesh is held until it is written.
     WeldingWriter writer;
@@ -66,7 +71,9 @@ void run_tessellate(const TessellateArgs& args) {
         indices = uniform_indices;
       }
       writer.add_patch(patch.positions, patch.normals, keys, indices);
+      if (done) done->fetch_add(patch.positions.size(), std::memory_order_relaxed);
     });
+    progress.finish();
     writer.write(args.output);
     std::fprintf(report, "welded: %" PRIu64 " patch vertices into %" PRIu64 " distinct vertices\n",
                  writer.vertices_in(), writer.vertices_out());
@@ -75,7 +82,9 @@ void run_tessellate(const TessellateArgs& args) {
     summary = tessellate_mesh(mesh, settings, mode, [&](const PatchView& patch) {
       if (patch.L > 0) writer.add_patch(patch.L, patch.positions.data(), patch.normals.data());
       else writer.add_patch(patch.positions, patch.normals, patch.indices);
+      if (done) done->fetch_add(patch.positions.size(), std::memory_order_relaxed);
     });
+    progress.finish();
     writer.finish();
   }
 
@@ -113,6 +122,7 @@ void register_tessellate(CLI::App& app) {
   cmd->add_flag("--weld", args->weld,
                 "Write the vertices that patches share (corners, edge points) once, found by their place on the "
                 "input mesh and exact barycentric weights");
+  cmd->add_flag("--quiet", args->quiet, kQuietHelp);
   cmd->callback([args] { run_tessellate(*args); });
 }
 

@@ -69,6 +69,43 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   std::sort(resets.begin(), resets.end());
   std::size_t next_reset = 0;
   std::uint64_t cycle = 0;
+
+  // The DPG's place in its patch, followed from the cycle model's allocations (each takes one
+  // point of the patch): where a reset lands, and where a random one is aimed.
+  std::uint32_t walk_patch = 0;
+  int walk_taken = 0, walk_points = 0, walk_outer_ring = 0;  // taken 0: between patches
+  auto follow_walk = [&](const sim::CycleActivity& act) {
+    if (!act.allocated) return;
+    if (walk_taken == 0) {
+      walk_patch = act.allocated_patch;
+      const sim::TriangleFx& t = stream[walk_patch];
+      walk_points = sim::patch_vertex_count(t);
+      walk_outer_ring = walk_points;
+      if (t.pattern != sim::TriPattern::uniform) {
+        const auto& outer = sim::tri_setup(t).factors.outer_points;
+        walk_outer_ring = outer[0] + outer[1] + outer[2] - 3;
+      }
+    }
+    if (++walk_taken == walk_points) walk_taken = 0;
+  };
+  auto dpg_in_d3d11 = [&] { return walk_taken > 0 && stream[walk_patch].pattern != sim::TriPattern::uniform; };
+  auto dpg_in_inner_ring = [&] { return dpg_in_d3d11() && walk_taken >= walk_outer_ring; };
+  auto cpg_computing = [&] { return model.unit().activity().cpg_action == sim::CpgAction::Compute; };
+
+  // Random resets (RandomResets): the next one's due cycle and its target.
+  const RandomResets& random = opts.random_resets;
+  sim::SplitMix64 reset_rng(opts.seed ^ 0x4e5e7a7a4e5e7a7aULL);
+  const std::uint64_t span = std::max<std::uint64_t>(random.span, 1);
+  int random_fired = 0;
+  std::uint64_t reset_due = 1 + reset_rng.next() % span;
+  auto random_reset_now = [&] {
+    if (random_fired >= random.count || cycle < reset_due) return false;
+    switch (random_fired % 3) {
+      case 1: return dpg_in_inner_ring() || cycle >= reset_due + span;
+      case 2: return cpg_computing() || cycle >= reset_due + span;
+      default: return true;
+    }
+  };
   bool stopped_early = false;  // at stop_at: the state of that cycle is outside the window
 
   auto diverge = [&](const Mismatch& m) {
@@ -90,9 +127,20 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
     if (record && cycle == record->from) rtl.set_wave_enabled(true);
     if (record && record->to != std::numeric_limits<std::uint64_t>::max() && cycle == record->to + 1)
       rtl.set_wave_enabled(false);
-    if (next_reset < resets.size() && cycle == resets[next_reset]) {
+    const bool listed_reset = next_reset < resets.size() && cycle == resets[next_reset];
+    const bool random_reset = random_reset_now();
+    if (listed_reset || random_reset) {
       // Mid-stream reset of both implementations: the stream starts again from the beginning.
-      ++next_reset;
+      if (listed_reset) ++next_reset;
+      if (random_reset) {
+        ++random_fired;
+        reset_due = cycle + 1 + reset_rng.next() % span;
+      }
+      ++rep.resets.total;
+      rep.resets.dpg_d3d11 += dpg_in_d3d11();
+      rep.resets.dpg_inner_ring += dpg_in_inner_ring();
+      rep.resets.cpg_compute += cpg_computing();
+      walk_taken = 0;
       if (coverage) coverage->sample_reset(model.unit());
       expected.reset();
       actual.reset();
@@ -131,11 +179,13 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
       if (reference && v.id < stream.size()) reference->check(v);
       if (coverage) coverage->sample_vertex(v);
       progress.transfer(cycle);
+      if (checking && opts.vertices_done) opts.vertices_done->fetch_add(1, std::memory_order_relaxed);
     }
 
     // 3. The clock edge, for both.
     expected.tick(in);
     actual.tick(in);
+    follow_walk(model.unit().activity());
     if (coverage) coverage->sample_cycle(in, vtx_valid, vtx_front, tb.gpe_cycle(), model.unit());
 
     if (checking && tb.accepted() == run.expected_vertices) {
@@ -234,6 +284,10 @@ std::string format_report(const CosimReport& r, const CosimOptions& o) {
      << ",F=" << u.format.coord_frac_bits << ") B=" << u.format.bary_bits << "  GPE K=" << u.gpe_cycles
      << " stall=" << u.gpe_stall_prob << "\n";
   os << "  ran " << r.cycles << " cycles, " << r.triangles << " triangles in, " << r.vertices << " vertices out\n";
+  if (r.resets.total)
+    os << "  resets: " << r.resets.total << " (" << r.resets.dpg_d3d11 << " with the DPG inside a D3D11 patch, "
+       << r.resets.dpg_inner_ring << " of them past its outer ring; " << r.resets.cpg_compute
+       << " with the CPG mid-triangle)\n";
   if (r.divergence) {
     const Divergence& d = *r.divergence;
     os << "  FAIL: first divergence at cycle " << d.cycle << " in " << d.field << " (patch " << d.triangle << ")\n";

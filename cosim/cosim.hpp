@@ -7,6 +7,7 @@
 // itself, passing or failing (docs/verification.md).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -23,6 +24,17 @@
 
 namespace tessim::cosim {
 
+// Mid-stream resets at cycles drawn from the run's seed: `count` resets, the i-th due at a cycle
+// drawn uniformly from the `span` cycles after the previous one and fired at the first cycle from
+// then on at which its target state holds — in turn any cycle, the DPG inside an inner ring of a
+// D3D11 patch (a large pattern half walked), the CPG mid-triangle. A target that does not come
+// within `span` more cycles (a stream without D3D11 patches) gives way to any cycle. The report
+// counts where the resets landed (CosimReport::resets), so a test can require each kind.
+struct RandomResets {
+  int count = 0;
+  std::uint64_t span = 2000;
+};
+
 struct CosimOptions {
   sim::UnitConfig unit;            // the configuration of both implementations
   std::string variant;             // RTL build to run ("n2", "n2_verif", ...: rtl_variants())
@@ -32,9 +44,11 @@ struct CosimOptions {
   std::filesystem::path wave;      // .fst or .vcd written on divergence (empty: none), .gtkw beside it
   std::optional<WaveWindow> wave_cycles;  // instead: these cycles, recorded in the run itself
   std::vector<std::uint64_t> reset_at;  // cycles at which both are reset mid-stream
+  RandomResets random_resets;           // and at random cycles in chosen states (above)
   std::uint64_t hang_cycles = 100000;   // cycles without any transfer that count as a hang
   bool check_reference = true;     // compare each vertex with the float reference
   FunctionalCoverage* coverage = nullptr;  // sampled every cycle when set (cosim/coverage.hpp)
+  std::atomic<std::uint64_t>* vertices_done = nullptr;  // +1 per vertex accepted (progress meter)
 };
 
 struct Divergence {
@@ -44,6 +58,14 @@ struct Divergence {
   std::string actual;              // RTL
   std::uint32_t triangle = 0;      // patch id of the vertex concerned (or the last accepted)
   std::vector<std::string> recent;  // the last transactions before it, oldest first
+};
+
+// Where the mid-stream resets landed, from the cycle model's state in the cycle before each.
+struct ResetTally {
+  std::uint64_t total = 0;
+  std::uint64_t dpg_d3d11 = 0;        // the DPG part-way through a D3D11 patch
+  std::uint64_t dpg_inner_ring = 0;   // ... past its outer ring (the walk's ring register > 0)
+  std::uint64_t cpg_compute = 0;      // the CPG mid-triangle (counting down)
 };
 
 struct CosimReport {
@@ -61,6 +83,7 @@ struct CosimReport {
   sim::ArithmeticErrors reference;  // every accepted vertex against the float reference
   std::filesystem::path wave;      // written waveform, if any
   bool hang = false;
+  ResetTally resets;
 };
 
 // Runs the whole stream through both implementations. Throws InputError when the RTL variant

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace tessim::app {
 
@@ -92,24 +93,28 @@ std::string format_tick(double value) {
   return buf;
 }
 
-Image colour_bar_strip(const ColourScale& scale, int width, const glm::dvec3& background, int text_scale) {
+Image colour_bar_strip(const ColourScale& scale, int width, const glm::dvec3& background, int text_scale,
+                       glm::dvec3 (*map)(double)) {
   const int line = text_line_height(text_scale);
   const int bar_height = 12 * text_scale;
   const int tick_length = 4 * text_scale;
-  const int height = kPad + line + kPad + bar_height + tick_length + line + kPad;
-  Image strip(width, height);
-  fill(strip, 0, 0, width, height, background);
   const glm::dvec3 ink(0.08, 0.08, 0.10);
 
   const std::string title = scale.title + (scale.clipped_above ? " (larger values shown as the top colour)" : "");
-  draw_text(strip, kPad, kPad, fit_text(title, width - 2 * kPad, text_scale), ink, text_scale);
+  const std::vector<std::string> title_lines = wrap_text(title, width - 2 * kPad, text_scale);
+  const int title_height = static_cast<int>(title_lines.size()) * line;
+  const int height = kPad + title_height + kPad + bar_height + tick_length + line + kPad;
+  Image strip(width, height);
+  fill(strip, 0, 0, width, height, background);
+  for (std::size_t i = 0; i < title_lines.size(); ++i)
+    draw_text(strip, kPad, kPad + static_cast<int>(i) * line, title_lines[i], ink, text_scale);
 
   // The bar spans the strip but leaves room for half a label at either end.
   const int margin = kPad + text_width("0.000", text_scale) / 2;
   const int x0 = margin, x1 = std::max(margin + 2, width - margin);
-  const int bar_top = kPad + line + kPad;
+  const int bar_top = kPad + title_height + kPad;
   for (int x = x0; x < x1; ++x)
-    fill(strip, x, bar_top, x + 1, bar_top + bar_height, colormap((x - x0 + 0.5) / (x1 - x0)));
+    fill(strip, x, bar_top, x + 1, bar_top + bar_height, map((x - x0 + 0.5) / (x1 - x0)));
   fill(strip, x0 - 1, bar_top - 1, x1 + 1, bar_top, ink);
   fill(strip, x0 - 1, bar_top + bar_height, x1 + 1, bar_top + bar_height + 1, ink);
   fill(strip, x0 - 1, bar_top, x0, bar_top + bar_height, ink);
@@ -126,19 +131,55 @@ Image colour_bar_strip(const ColourScale& scale, int width, const glm::dvec3& ba
   return strip;
 }
 
+std::vector<std::string> wrap_text(std::string_view text, int width, int scale) {
+  const auto per_line = static_cast<std::size_t>(std::max(1, width / (kGlyphWidth * scale)));
+  std::vector<std::string> lines;
+  std::string_view rest = text;
+  while (rest.size() > per_line) {
+    // The last space that keeps the line within the width, else a cut inside the word.
+    const std::size_t space = rest.substr(0, per_line + 1).rfind(' ');
+    const std::size_t cut = space == std::string_view::npos || space == 0 ? per_line : space;
+    lines.emplace_back(rest.substr(0, cut));
+    rest.remove_prefix(cut);
+    while (!rest.empty() && rest.front() == ' ') rest.remove_prefix(1);
+  }
+  if (!rest.empty() || lines.empty()) lines.emplace_back(rest);
+  return lines;
+}
+
+Image stack(const Image& top, const Image& bottom) {
+  if (top.width != bottom.width) throw std::logic_error("stack: images of different widths");
+  Image out(top.width, top.height + bottom.height);
+  std::copy(top.rgb.begin(), top.rgb.end(), out.rgb.begin());
+  std::copy(bottom.rgb.begin(), bottom.rgb.end(), out.rgb.begin() + static_cast<std::ptrdiff_t>(top.rgb.size()));
+  return out;
+}
+
 Image caption_strip(const std::vector<CaptionLine>& lines, int width, const glm::dvec3& background, int text_scale) {
   const int line = text_line_height(text_scale);
-  const int height = kPad + static_cast<int>(lines.size()) * (line + kPad);
+  // Every cell wrapped to its width; a caption line is as tall as its tallest cell.
+  std::vector<std::vector<std::vector<std::string>>> wrapped(lines.size());
+  int height = kPad;
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    std::size_t rows = 1;
+    for (std::size_t c = 0; c < lines[l].cells.size(); ++c) {
+      wrapped[l].push_back(wrap_text(lines[l].cells[c], lines[l].width[c] - 2 * kPad, text_scale));
+      rows = std::max(rows, wrapped[l].back().size());
+    }
+    height += static_cast<int>(rows) * line + kPad;
+  }
   Image strip(width, height);
   fill(strip, 0, 0, width, height, background);
   const glm::dvec3 ink(0.08, 0.08, 0.10);
+  int y = kPad;
   for (std::size_t l = 0; l < lines.size(); ++l) {
-    const CaptionLine& cl = lines[l];
-    for (std::size_t c = 0; c < cl.cells.size(); ++c) {
-      const int x = cl.x[c] + kPad;
-      draw_text(strip, x, kPad + static_cast<int>(l) * (line + kPad),
-                fit_text(cl.cells[c], cl.width[c] - 2 * kPad, text_scale), ink, text_scale);
+    std::size_t rows = 1;
+    for (std::size_t c = 0; c < wrapped[l].size(); ++c) {
+      for (std::size_t r = 0; r < wrapped[l][c].size(); ++r)
+        draw_text(strip, lines[l].x[c] + kPad, y + static_cast<int>(r) * line, wrapped[l][c][r], ink, text_scale);
+      rows = std::max(rows, wrapped[l][c].size());
     }
+    y += static_cast<int>(rows) * line + kPad;
   }
   return strip;
 }

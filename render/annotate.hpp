@@ -36,12 +36,21 @@ struct ColourScale {
   double position(double value) const { return (value - lo) / (hi - lo); }
 };
 
-// A strip of `width` x strip_height(scale) pixels: the colour bar from lo to hi with ticks and
-// labels under it and the title beside it, on `background`.
-Image colour_bar_strip(const ColourScale& scale, int width, const glm::dvec3& background, int text_scale = 1);
+// A strip of `width` pixels: the colour bar from lo to hi in the colours of `map` (t in [0, 1]),
+// with ticks and labels under it and the title above it, on `background`.
+Image colour_bar_strip(const ColourScale& scale, int width, const glm::dvec3& background, int text_scale = 1,
+                       glm::dvec3 (*map)(double) = colormap);
+
+// `top` above `bottom` (both of the same width).
+Image stack(const Image& top, const Image& bottom);
+
+// `text` broken into lines of at most `width` pixels: at spaces where it can, inside a word longer
+// than a line where it must. At least one line (empty for empty text), at least one character each.
+std::vector<std::string> wrap_text(std::string_view text, int width, int scale = 1);
 
 // A strip of text lines; each line has cells, cell i drawn from x[i] in at most width[i] pixels
-// (shortened when it does not fit), e.g. one label per panel of a comparison.
+// (wrapped onto as many text rows as it needs: the strip grows, nothing is cut off), e.g. one
+// label per panel of a comparison.
 struct CaptionLine {
   std::vector<std::string> cells;
   std::vector<int> x, width;

@@ -42,6 +42,8 @@ void validate(const RenderMesh& mesh, std::string_view what) {
     throw InputError(name, "edge flags", "count differs from the number of triangles");
   if (!mesh.scalars.empty() && mesh.scalars.size() != mesh.positions.size())
     throw InputError(name, "scalars", "count differs from the number of positions");
+  if (!mesh.wire_colours.empty() && mesh.wire_colours.size() != mesh.triangles.size())
+    throw InputError(name, "wire colours", "count differs from the number of triangles");
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     if (!finite(mesh.positions[i])) throw InputError(name, "vertex " + std::to_string(i), "position is not finite");
     if (!finite(mesh.normals[i])) throw InputError(name, "vertex " + std::to_string(i), "normal is not finite");
@@ -300,6 +302,7 @@ struct Renderer::Impl {
       const double twice_area = std::abs(edge(corner[0]->x, corner[0]->y, corner[1]->x, corner[1]->y,
                                               corner[2]->x, corner[2]->y));
       const std::uint8_t flags = mesh.edge_flags.empty() ? 0x7 : mesh.edge_flags[t];
+      const bool coloured_wires = !mesh.wire_colours.empty();
       const double primary_half = 0.5 * options.wire_width_px * samples_per_side;
       double alpha = 0.0;
       for (int e = 0; e < 3; ++e) {  // edge from corner e to corner e+1, opposite corner e+2
@@ -310,11 +313,12 @@ struct Renderer::Impl {
         const double distance = std::max(0.0, screen[(e + 2) % 3]) * twice_area / length;
         const bool primary = (flags >> e) & 1;
         const double half_width = primary ? primary_half : 0.6 * primary_half;
-        const double opacity = primary ? options.wire_opacity : 0.4 * options.wire_opacity;
+        // Coloured wires (a factor per patch) keep their colour readable inside the patch too.
+        const double opacity = primary ? options.wire_opacity : (coloured_wires ? 0.75 : 0.4) * options.wire_opacity;
         const double coverage = std::clamp(half_width + 0.5 - distance, 0.0, 1.0);
         alpha = std::max(alpha, coverage * opacity);
       }
-      colour = glm::mix(colour, options.wire_colour, alpha);
+      colour = glm::mix(colour, mesh.wire_colours.empty() ? options.wire_colour : mesh.wire_colours[t], alpha);
     }
     return colour;
   }
@@ -421,15 +425,15 @@ glm::ivec2 parse_image_size(std::string_view text, std::string_view option) {
   const std::string expected = "expected WxH with W and H in 1.." + std::to_string(kMaxImageSide) +
                                ", got '" + std::string(text) + "'";
   const std::size_t sep = text.find_first_of("xX");
-  if (sep == std::string_view::npos) throw InputError("render", name, expected);
+  if (sep == std::string_view::npos) throw InputError("command line", name, expected);
   auto number = [&](std::string_view digits) {
-    if (digits.empty() || digits.size() > 5) throw InputError("render", name, expected);
+    if (digits.empty() || digits.size() > 5) throw InputError("command line", name, expected);
     int value = 0;
     for (char c : digits) {
-      if (c < '0' || c > '9') throw InputError("render", name, expected);
+      if (c < '0' || c > '9') throw InputError("command line", name, expected);
       value = value * 10 + (c - '0');
     }
-    if (value < 1 || value > kMaxImageSide) throw InputError("render", name, expected);
+    if (value < 1 || value > kMaxImageSide) throw InputError("command line", name, expected);
     return value;
   };
   return {number(text.substr(0, sep)), number(text.substr(sep + 1))};
@@ -437,7 +441,8 @@ glm::ivec2 parse_image_size(std::string_view text, std::string_view option) {
 
 bool is_supported_image(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);
-  return ext == ".png" || ext == ".exr";
+  // Standard output, a device or a pipe needs no extension: it gets PNG.
+  return ext == ".png" || ext == ".exr" || output_kind(path) != OutputKind::File;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -469,7 +474,7 @@ ImageFileWriter::ImageFileWriter(const std::filesystem::path& path, int width, i
   if (!is_supported_image(path))
     d.fail("unsupported image format '" + path.extension().string() + "' (use .png or .exr)");
   if (width < 1 || height < 1) d.fail("empty image");
-  d.png = lower_extension(path) == ".png";
+  d.png = lower_extension(path) != ".exr";
   d.width = width;
   d.height = height;
   d.plugin = &image_io_plugin(path);  // loads OpenImageIO only now that an image is written

@@ -23,13 +23,16 @@ namespace tessim::app {
 // are secondary (drawn lighter, e.g. edges inside a patch). scalars is optional (empty: the
 // albedo colour everywhere); with one value per position the surface is coloured by the value,
 // interpolated per pixel and mapped through RenderOptions::scalar_lo..scalar_hi to viridis
-// (a heat map, e.g. of errors).
+// (a heat map, e.g. of errors). wire_colours is optional (empty: RenderOptions::wire_colour);
+// with one colour per triangle the wireframe draws that triangle's edges in it (e.g. coloured by
+// the tessellation factor of the patch the triangle belongs to).
 struct RenderMesh {
   std::vector<glm::dvec3> positions;
   std::vector<glm::dvec3> normals;
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint8_t> edge_flags;
   std::vector<double> scalars;
+  std::vector<glm::dvec3> wire_colours;
 };
 
 // Checks that every index is in range and the arrays agree in size; throws InputError.
@@ -135,7 +138,8 @@ Image side_by_side(const Image& left, const Image& right, const glm::dvec3& sepa
 // "WxH" (decimal, 1..kMaxImageSide each). Throws InputError naming `option`.
 glm::ivec2 parse_image_size(std::string_view text, std::string_view option = "--size");
 
-// True for .png and .exr (any case): the formats write_image and ImageFileWriter accept.
+// True for .png and .exr (any case): the formats write_image and ImageFileWriter accept; and for
+// outputs written directly (standard output "-", a device, a pipe), which get PNG.
 bool is_supported_image(const std::filesystem::path& path);
 
 // Streams an image to a PNG or EXR file band by band; nothing appears at `path` until

@@ -434,18 +434,21 @@ def fmt_time(s):
 
 
 class Progress:
-    """Progress bar with ETA on stderr. ETA weighs each point by its expected simulated cycles."""
+    """Progress bar with rate and ETA on stderr, redrawn in place; only on a terminal and without
+    --quiet. The ETA weighs each point by its expected simulated cycles; the rate counts the points
+    run (not those taken from the cache)."""
 
-    def __init__(self, total_points, cached, total_weight):
+    def __init__(self, total_points, cached, total_weight, quiet=False):
         self.total = total_points
         self.done = cached
         self.cached = cached
         self.total_weight = total_weight
         self.done_weight = 0.0
         self.start = time.monotonic()
-        self.tty = sys.stderr.isatty()
+        self.shown = sys.stderr.isatty() and not quiet
         self.last = 0.0
         self.failed = 0
+        self.width = 0
         self.draw(force=True)
 
     def advance(self, weight, failed=False):
@@ -456,7 +459,7 @@ class Progress:
 
     def draw(self, force=False, final=False):
         now = time.monotonic()
-        if not force and not final and now - self.last < (0.5 if self.tty else 15):
+        if not self.shown or (not force and not final and now - self.last < 0.1):
             return
         self.last = now
         elapsed = now - self.start
@@ -466,13 +469,12 @@ class Progress:
             eta = elapsed * (self.total_weight - self.done_weight) / self.done_weight
         width = 30
         bar = "#" * int(width * frac) + "." * (width - int(width * frac))
+        rate = (self.done - self.cached) / elapsed if elapsed > 0 else 0.0
         msg = (f"[{bar}] {self.done}/{self.total} points ({self.cached} cached"
                f"{', %d rejected' % self.failed if self.failed else ''}) "
-               f"elapsed {fmt_time(elapsed)} ETA {fmt_time(0 if final else eta)}")
-        if self.tty:
-            sys.stderr.write("\r" + msg + ("\n" if final else ""))
-        else:
-            sys.stderr.write(msg + "\n")
+               f"{rate:.3g} points/s elapsed {fmt_time(elapsed)} ETA {fmt_time(0 if final else eta)}")
+        sys.stderr.write("\r" + msg.ljust(self.width) + ("\n" if final else ""))
+        self.width = len(msg)
         sys.stderr.flush()
 
 
@@ -525,6 +527,8 @@ def cmd_sweep(argv):
     ap.add_argument("--shard", help="i/n: run only every n-th point starting at the i-th (1-based)")
     ap.add_argument("--cache", help="cache directory (default: OUTPUT.cache)")
     ap.add_argument("--tessim", default=str(DEFAULT_TESSIM), help="tessim binary (default: build/bin/tessim)")
+    ap.add_argument("--quiet", "-q", action="store_true",
+                    help="no progress line (shown on a terminal only: points done/total, rate, ETA)")
     ap.add_argument("--scheduler", metavar="ADDRESS",
                     help="run the points on a Dask distributed cluster (e.g. tcp://host:8786); its workers "
                          "must see the same tessim binary, meshes and cache paths (a shared file system)")
@@ -585,7 +589,7 @@ def cmd_sweep(argv):
             todo.append((i, p, g, key))
         unique_todo = list({key: (i, p, g, key) for i, p, g, key in todo}.values())
         weights = {key: expected_cycles(p, triangles[p["mesh"]], sch) for _, p, _, key in unique_todo}
-        progress = Progress(len(keyed), len(keyed) - len(unique_todo), sum(weights.values()))
+        progress = Progress(len(keyed), len(keyed) - len(unique_todo), sum(weights.values()), args.quiet)
 
         crashed = []
         if dask_pool:

@@ -240,6 +240,8 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
         }
       }
       if (v.last) {
+        if (hooks.vertices_done)
+          hooks.vertices_done->fetch_add(static_cast<std::uint64_t>(patch_vertices), std::memory_order_relaxed);
         if (hooks.cancel && hooks.cancel->load(std::memory_order_relaxed)) throw SimCancelled();
         expect_index = 0;
         expect_patch(std::uint64_t{expect_id} + 1);
