@@ -13,6 +13,7 @@
 
 #include "app/commands.hpp"
 #include "model/error.hpp"
+#include "model/input_file.hpp"
 #include "sim/simulate.hpp"
 
 namespace tessim::app {
@@ -27,11 +28,10 @@ struct CompareArgs {
 };
 
 json read_stats(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "file", "cannot be opened");
+  const std::string text = read_whole_file(path, kDataFileLimit, "file");
   json j;
   try {
-    j = json::parse(in);
+    j = json::parse(text);
   } catch (const json::exception& e) {
     throw InputError(path, "JSON", e.what());
   }

@@ -17,6 +17,7 @@
 #include "app/commands.hpp"
 #include "app/report_html.hpp"
 #include "model/error.hpp"
+#include "model/input_file.hpp"
 #include "model/output_file.hpp"
 
 namespace tessim::app {
@@ -33,16 +34,6 @@ struct ReportArgs {
   std::string wave;
   std::vector<std::string> images;
 };
-
-std::string read_input(const std::string& path, const std::string& element) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(path, element, "is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, element, std::string("cannot be opened (") + std::strerror(errno) + ")");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(path, element, "read failed");
-  return bytes;
-}
 
 // A file the page links to: it must exist; the link is relative to the page's directory, so
 // the page and its files can move together.
@@ -68,7 +59,7 @@ void run_report(const ReportArgs& a) {
     if (fs::exists(a.output, ec) && fs::equivalent(a.output, path, ec))
       throw InputError(a.output, "-o", std::string("is the input ") + option + " " + path + ": it would be overwritten");
 
-  const std::string text = read_input(a.stats, "file");
+  const std::string text = read_whole_file(a.stats, kDataFileLimit, "file");
   json stats;
   try {
     stats = json::parse(text);
@@ -79,14 +70,17 @@ void run_report(const ReportArgs& a) {
   ReportInput in;
   in.stats_name = a.stats;
   for (const std::string& path : a.images) {
-    ReportImage img{path, read_input(path, "--image")};
+    ReportImage img{path, read_whole_file(path, kImageFileLimit, "--image")};
     const PngCheck png = png_size(img.bytes);
     if (!png.error.empty()) throw InputError(path, "--image", png.error);
     img.width = png.width;
     img.height = png.height;
     in.images.push_back(std::move(img));
   }
-  const fs::path page_dir = fs::weakly_canonical(fs::absolute(a.output)).parent_path();
+  // A page written to standard output, a device or a pipe links relative to the working directory.
+  const bool to_file = output_kind(a.output) == OutputKind::File;
+  const fs::path page_dir =
+      to_file ? fs::weakly_canonical(fs::absolute(a.output)).parent_path() : fs::weakly_canonical(fs::current_path());
   if (!a.trace.empty()) in.links.push_back(link_to(a.trace, "--trace", "Perfetto trace", page_dir));
   if (!a.wave.empty()) {
     in.links.push_back(link_to(a.wave, "--wave", "waveform", page_dir));
@@ -99,8 +93,11 @@ void run_report(const ReportArgs& a) {
   AtomicOutput out(a.output);
   out.stream() << html;
   out.commit();
-  std::printf("wrote %s: %zu bytes, %zu image%s, %zu linked file%s\n", a.output.c_str(), html.size(), in.images.size(),
-              in.images.size() == 1 ? "" : "s", in.links.size(), in.links.size() == 1 ? "" : "s");
+  // The page on standard output: the summary goes to stderr.
+  std::FILE* summary = out.kind() == OutputKind::Stdout ? stderr : stdout;
+  std::fprintf(summary, "wrote %s: %zu bytes, %zu image%s, %zu linked file%s\n", output_name(a.output).c_str(),
+               html.size(), in.images.size(), in.images.size() == 1 ? "" : "s", in.links.size(),
+               in.links.size() == 1 ? "" : "s");
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "model/error.hpp"
 #include "model/io/format.hpp"
 #include "model/mesh_io.hpp"
+#include "model/output_file.hpp"
 #include "model/stpn_import.hpp"
 
 namespace tessim::app {
@@ -39,7 +40,9 @@ void run_stpn_import(const StpnImportArgs& args) {
     throw InputError("stpn-import", "--sigma", number_text(args.sigma) + " is outside 0..1000");
   if (!(args.corner_tension >= -1.0 && args.corner_tension <= 1.0))
     throw InputError("stpn-import", "--corner-tension", number_text(args.corner_tension) + " is outside -1..1");
-  if (io::lower_extension(args.output) != ".ply")
+  // Standard output, a device or a pipe gets the PLY whatever its name.
+  const OutputKind kind = output_kind(args.output);
+  if (kind == OutputKind::File && io::lower_extension(args.output) != ".ply")
     throw InputError(args.output, "output",
                      "unsupported extension '" + std::filesystem::path(args.output).extension().string() +
                          "' (an ST-mesh is written as .ply)");
@@ -60,18 +63,23 @@ void run_stpn_import(const StpnImportArgs& args) {
                number_text(s.crease_angle) + " degrees";
     if (s.faceted_normals) creases += "; the file's normals are flat, one per face";
   }
-  std::printf("%s: %zu vertices, %zu triangles, %zu crease edges (%s)\n", args.output.c_str(), s.vertices, s.triangles,
-              s.crease_edges, creases.c_str());
-  std::printf("crease vertices   %zu: %zu tagged, %zu untagged by the tag rules, %zu untagged (sides facing opposite ways)\n",
-              s.crease_vertices, s.tagged, s.restricted, s.folded);
-  std::printf("  tagged          %zu with sigma %s, %zu softened to sigma 0 (%zu: a crease runs into an untagged "
-              "vertex, %zu: the side test disagrees)\n",
-              s.tagged - s.softened, number_text(args.sigma).c_str(), s.softened, s.softened_ends, s.softened_sides);
-  std::printf("corners           %zu (theta %s), %zu of them tagged with sigma 0 to close a crease\n", s.corners,
-              number_text(args.corner_tension).c_str(), s.corners_tagged);
-  std::printf("crease ends       %zu, %zu of them tagged with sigma 0 to close a crease\n", s.crease_ends,
-              s.crease_ends_tagged);
-  std::printf("non-manifold      %zu (untagged)\n", s.non_manifold);
+  // The mesh on standard output: the summary goes to stderr.
+  std::FILE* out = kind == OutputKind::Stdout ? stderr : stdout;
+  std::fprintf(out, "%s: %zu vertices, %zu triangles, %zu crease edges (%s)\n", output_name(args.output).c_str(),
+               s.vertices, s.triangles, s.crease_edges, creases.c_str());
+  std::fprintf(out,
+               "crease vertices   %zu: %zu tagged, %zu untagged by the tag rules, %zu untagged (sides facing opposite "
+               "ways)\n",
+               s.crease_vertices, s.tagged, s.restricted, s.folded);
+  std::fprintf(out,
+               "  tagged          %zu with sigma %s, %zu softened to sigma 0 (%zu: a crease runs into an untagged "
+               "vertex, %zu: the side test disagrees)\n",
+               s.tagged - s.softened, number_text(args.sigma).c_str(), s.softened, s.softened_ends, s.softened_sides);
+  std::fprintf(out, "corners           %zu (theta %s), %zu of them tagged with sigma 0 to close a crease\n", s.corners,
+               number_text(args.corner_tension).c_str(), s.corners_tagged);
+  std::fprintf(out, "crease ends       %zu, %zu of them tagged with sigma 0 to close a crease\n", s.crease_ends,
+               s.crease_ends_tagged);
+  std::fprintf(out, "non-manifold      %zu (untagged)\n", s.non_manifold);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "app/commands.hpp"
 #include "model/error.hpp"
+#include "model/input_file.hpp"
 
 namespace tessim::app {
 
@@ -28,14 +29,7 @@ std::string help_text(const sim::ParamSpec& p, const sim::UnitConfig& defaults) 
 // The JSON object of a --config file. Every failure is an InputError naming the file and, for a
 // value JSON cannot hold (a number beyond double's range, such as 1e400), its key.
 nlohmann::json read_config_file(const std::string& file) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) throw InputError(file, "file", "does not exist");
-  if (std::filesystem::is_directory(file, ec)) throw InputError(file, "file", "is a directory, not a JSON file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file, "file", "cannot be opened for reading");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(file, "file", "read error");
-  return sim::parse_config_text(text, file);
+  return sim::parse_config_text(read_whole_file(file, kConfigFileLimit, "file"), file);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "app/commands.hpp"
 #include "model/error.hpp"
+#include "model/output_file.hpp"
 #include "model/pattern.hpp"
 #include "render/raster.hpp"
 
@@ -42,10 +43,31 @@ void warn_tags_ignored(const Mesh& mesh, const char* command) {
 void check_output_paths(const std::vector<OutputPath>& outputs) {
   namespace fs = std::filesystem;
   std::vector<fs::path> seen;
+  const char* stdout_option = nullptr;
   for (const OutputPath& o : outputs) {
     if (o.path.empty()) continue;
-    const fs::path path = o.path;
+    // Standard output, a device or a pipe is written directly (model/output_file.hpp): no
+    // temporary beside it. Two outputs cannot share standard output or a pipe; /dev/null and
+    // other character devices take any number.
+    const OutputKind kind = output_kind(o.path);
+    if (kind == OutputKind::Stdout) {
+      if (stdout_option)
+        throw InputError(o.path, o.option,
+                         std::string("is standard output, which ") + stdout_option + " writes already");
+      stdout_option = o.option;
+      continue;
+    }
     std::error_code ec;
+    if (kind == OutputKind::Direct) {
+      if (fs::is_character_file(fs::status(o.path, ec))) continue;
+      const fs::path key = resolve_output_path(o.path);
+      for (const fs::path& other : seen)
+        if (other == key) throw InputError(o.path, o.option, "is also the path of another output of this command");
+      seen.push_back(key);
+      continue;
+    }
+    // A symbolic link is written through: its target's directory holds the temporary.
+    const fs::path path = resolve_output_path(o.path);
     if (fs::is_directory(path, ec)) throw InputError(o.path, o.option, "is a directory");
     const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (!fs::is_directory(dir, ec))

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "model/error.hpp"
+#include "model/output_file.hpp"
 #include "sim/cpg.hpp"
 
 extern char** environ;
@@ -59,17 +60,32 @@ WaveFormat wave_format(const std::filesystem::path& path, const std::string& opt
 }
 
 void check_wave_path(const std::filesystem::path& path, const std::string& option) {
+  if (output_kind(path) != OutputKind::File)
+    throw InputError("command line", option,
+                     "'" + path.string() +
+                         "': a waveform is written as a file, with its .gtkw layout beside it; give a file name, "
+                         "not standard output, a device or a pipe");
   if (wave_format(path, option) == WaveFormat::Vcd && !on_path(kFst2Vcd))
     throw InputError("command line", option,
                      "'" + path.string() + "': VCD output needs fst2vcd (Debian package gtkwave, scripts/setup.sh)");
 }
 
 std::filesystem::path wave_recording_path(const std::filesystem::path& path) {
-  if (wave_format(path) == WaveFormat::Fst) return path;
-  std::filesystem::path tmp = path;
-  tmp += ".recording.fst";
+  std::filesystem::path tmp = resolve_output_path(path);
+  tmp += ".tmp-" + std::to_string(::getpid()) + ".recording.fst";
   return tmp;
 }
+
+WaveTemporaries::WaveTemporaries(const std::filesystem::path& path) {
+  const std::filesystem::path recording = wave_recording_path(path);
+  for (const char* suffix : {"", ".hier", ".pak"}) {  // the FST writer's side files (fstapi.c)
+    std::filesystem::path file = recording;
+    file += suffix;
+    files_.push_back(std::make_unique<PendingTemporary>(file));
+  }
+}
+
+WaveTemporaries::~WaveTemporaries() = default;
 
 std::filesystem::path gtkw_path(const std::filesystem::path& dump) {
   std::filesystem::path p = dump;
@@ -95,10 +111,11 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   const int te_index = V > 1 ? clog2(static_cast<std::uint64_t>(V)) : 1;
 
   std::ostringstream o;
-  const std::filesystem::path abs = std::filesystem::absolute(dump);
+  // Relative names: gtkwave finds a relative dump file beside the save file it opens, so the
+  // pair can move together (and the page of tessim report links to both relatively).
   o << "[*] tessim cosim: the interfaces of tess_unit (docs/verification.md, Waveforms)\n";
-  o << "[dumpfile] \"" << abs.string() << "\"\n";
-  o << "[savefile] \"" << gtkw_path(abs).string() << "\"\n";
+  o << "[dumpfile] \"" << dump.filename().string() << "\"\n";
+  o << "[savefile] \"" << gtkw_path(dump).filename().string() << "\"\n";
   // Zoom (about 40 cycles across a 1600-pixel window), the marker on the divergence, and the view
   // opening 34 cycles before it.
   o << "*-4.000000 " << (marker ? static_cast<long long>(2 * *marker) : -1LL) << "\n";
@@ -169,9 +186,22 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
 
 void finish_wave(const std::filesystem::path& path, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
                  std::optional<std::uint64_t> marker) {
-  if (wave_format(path) == WaveFormat::Vcd) {
-    const std::filesystem::path recording = wave_recording_path(path);
-    const std::string in = recording.string(), out = path.string();
+  const std::filesystem::path recording = wave_recording_path(path);
+  // Whatever happens below, the recording does not stay (moved into place, or converted).
+  struct RemoveRecording {
+    const std::filesystem::path& path;
+    ~RemoveRecording() {
+      std::error_code ec;
+      std::filesystem::remove(path, ec);
+    }
+  } remove_recording{recording};
+  AtomicOutput dump(path, true);
+  if (wave_format(path) == WaveFormat::Fst) {
+    std::error_code ec;
+    std::filesystem::rename(recording, dump.temp_path(), ec);
+    if (ec) throw std::runtime_error("cannot move the recording into " + path.string() + ": " + ec.message());
+  } else {
+    const std::string in = recording.string(), out = dump.temp_path().string();
     std::vector<std::string> args{kFst2Vcd, "-f", in, "-o", out};
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
@@ -182,14 +212,16 @@ void finish_wave(const std::filesystem::path& path, const sim::HardwareConfig& h
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
-    std::error_code ec;
-    std::filesystem::remove(recording, ec);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw std::runtime_error("fst2vcd failed to convert the waveform into " + out);
+      throw std::runtime_error("fst2vcd failed to convert the waveform into " + path.string());
   }
-  std::ofstream gtkw(gtkw_path(path));
-  gtkw << gtkw_text(path, hw, first_cycle, marker);
-  if (!gtkw) throw std::runtime_error("cannot write " + gtkw_path(path).string());
+  AtomicOutput gtkw(gtkw_path(path));
+  gtkw.stream() << gtkw_text(path, hw, first_cycle, marker);
+  // The layout is complete before the dump moves into place: a failure leaves neither.
+  gtkw.stream().flush();
+  if (!gtkw.stream()) throw std::runtime_error("cannot write " + gtkw_path(path).string());
+  dump.commit_external();
+  gtkw.commit();
 }
 
 }  // namespace tessim::cosim

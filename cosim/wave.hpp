@@ -8,9 +8,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "model/output_file.hpp"
 #include "sim/config.hpp"
 
 namespace tessim::cosim {
@@ -20,11 +23,32 @@ enum class WaveFormat { Fst, Vcd };
 // The format a path asks for, by its extension; InputError naming `option` for any other.
 WaveFormat wave_format(const std::filesystem::path& path, const std::string& option = "--wave");
 
-// What can be checked before a run: the extension, and for VCD that fst2vcd is installed.
+// What can be checked before a run: the extension, for VCD that fst2vcd is installed, and that
+// the path names a file (or a new one): a waveform and its layout go side by side into a
+// directory, so "-", a device or a pipe is refused.
 void check_wave_path(const std::filesystem::path& path, const std::string& option = "--wave");
 
-// The file the RTL records into: the FST itself, or a temporary FST beside a VCD.
+// The file the RTL records into: a temporary FST beside the dump (a symbolic link given as the
+// dump resolved), `DUMP.tmp-PID.recording.fst`. finish_wave() moves it into place (FST) or
+// converts and removes it (VCD); the FST writer keeps its hierarchy in `RECORDING.hier` until it
+// closes the file.
 std::filesystem::path wave_recording_path(const std::filesystem::path& path);
+
+// The temporaries of a dump's recording (the recording, its .hier and .pak side files) entered in
+// the table of files removed when the process is killed by SIGINT, SIGTERM or SIGHUP
+// (model/output_file.hpp), and removed when this object goes, so that neither an interrupted nor
+// a failed run leaves a partial recording behind. Hold one for as long as runs may record into
+// `path`.
+class WaveTemporaries {
+ public:
+  explicit WaveTemporaries(const std::filesystem::path& path);
+  ~WaveTemporaries();
+  WaveTemporaries(const WaveTemporaries&) = delete;
+  WaveTemporaries& operator=(const WaveTemporaries&) = delete;
+
+ private:
+  std::vector<std::unique_ptr<PendingTemporary>> files_;
+};
 
 // The gtkwave save file of a dump: the dump's path with the extension .gtkw.
 std::filesystem::path gtkw_path(const std::filesystem::path& dump);
@@ -36,10 +60,11 @@ struct WaveWindow {
   std::uint64_t to = std::numeric_limits<std::uint64_t>::max();
 };
 
-// After the RTL closed its recording: converts it to VCD where the path asks for it, and writes
-// the .gtkw for `hw` (signal widths follow the configuration) opening at cycle `first_cycle`, with
-// the marker on cycle `marker` (a divergence) when given. Throws std::runtime_error if fst2vcd
-// fails.
+// After the RTL closed its recording: moves it into place as the FST, or converts it to the VCD
+// (through a temporary, renamed into place), and writes the .gtkw for `hw` (signal widths follow
+// the configuration) opening at cycle `first_cycle`, with the marker on cycle `marker` (a
+// divergence) when given. The .gtkw names the dump relative to itself, so the pair can move
+// together. Throws std::runtime_error if fst2vcd fails.
 void finish_wave(const std::filesystem::path& path, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
                  std::optional<std::uint64_t> marker = std::nullopt);
 

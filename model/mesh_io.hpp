@@ -79,7 +79,8 @@ class MeshWriter {
   std::unique_ptr<Impl> impl_;
 };
 
-// Returns true if `path` has an extension MeshWriter accepts (.ply or .obj, any case), or is "-".
+// Returns true if `path` has an extension MeshWriter accepts (.ply or .obj, any case), or is
+// written directly (standard output "-", a device, a pipe: binary PLY, model/output_file.hpp).
 bool is_supported_output(const std::filesystem::path& path);
 
 }  // namespace tessim

@@ -4,10 +4,14 @@
 #include <unistd.h>
 
 #include <array>
-#include <cerrno>
 #include <atomic>
+#include <cerrno>
+#include <charconv>
 #include <cstring>
+#include <iostream>
 #include <mutex>
+#include <optional>
+#include <string_view>
 #include <system_error>
 
 #include "model/error.hpp"
@@ -90,50 +94,171 @@ void unregister_temporary(int slot) {
   if (slot >= 0) g_slots[static_cast<std::size_t>(slot)].state.store(kFree, std::memory_order_release);
 }
 
+// The descriptor a path names when it is one of the names under which a process reaches its own
+// open files (/dev/stdout, /dev/fd/N, /proc/self/fd/N): these are written as the descriptor, never
+// replaced or truncated behind the back of whoever opened it (`>> log` keeps appending).
+std::optional<int> own_descriptor(const std::filesystem::path& path) {
+  const std::string text = path.lexically_normal().string();
+  if (text == "/dev/stdin") return 0;
+  if (text == "/dev/stdout") return 1;
+  if (text == "/dev/stderr") return 2;
+  for (std::string_view prefix : {"/dev/fd/", "/proc/self/fd/", "/proc/thread-self/fd/"}) {
+    if (!text.starts_with(prefix)) continue;
+    const std::string_view digits = std::string_view(text).substr(prefix.size());
+    int fd = -1;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), fd);
+    if (!digits.empty() && ec == std::errc() && end == digits.data() + digits.size()) return fd;
+  }
+  return std::nullopt;
+}
+
+std::atomic<unsigned> g_external_temporaries{0};
+
 }  // namespace
 
-AtomicOutput::AtomicOutput(std::filesystem::path target, bool binary) : target_(std::move(target)) {
+std::filesystem::path resolve_output_path(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  fs::path p = path;
+  for (int hops = 0; hops < 40; ++hops) {  // 40: the kernel's limit on links followed (ELOOP)
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(p, ec))) break;
+    const fs::path target = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = target.is_absolute() ? target : p.parent_path() / target;
+  }
+  return p.lexically_normal();
+}
+
+OutputKind output_kind(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  if (path == "-") return OutputKind::Stdout;
+  if (const std::optional<int> fd = own_descriptor(path)) return *fd == 1 ? OutputKind::Stdout : OutputKind::Direct;
   std::error_code ec;
-  if (std::filesystem::is_directory(target_, ec))
-    throw InputError(target_.string(), "output", "is a directory");
-  temp_ = target_;
-  temp_ += ".tmp-" + std::to_string(::getpid());
+  const fs::file_status st = fs::status(resolve_output_path(path), ec);
+  if (fs::is_character_file(st) || fs::is_fifo(st) || fs::is_socket(st) || fs::is_block_file(st))
+    return OutputKind::Direct;
+  return OutputKind::File;
+}
+
+std::string output_name(const std::filesystem::path& path) {
+  return path == "-" ? std::string("standard output") : path.string();
+}
+
+PendingTemporary::PendingTemporary(std::filesystem::path path) : path_(std::move(path)) {
   // Registered before the file exists: a signal in between finds nothing to remove.
-  slot_ = register_temporary(temp_);
-  out_.open(temp_, binary ? std::ios::out | std::ios::binary | std::ios::trunc
-                          : std::ios::out | std::ios::trunc);
-  if (!out_) {
-    unregister_temporary(slot_);
-    slot_ = -1;
-    throw InputError(target_.string(), "output", "cannot open for writing");
+  slot_ = register_temporary(path_);
+}
+
+PendingTemporary::~PendingTemporary() {
+  if (slot_ == -2) return;  // kept
+  std::error_code ec;
+  std::filesystem::remove(path_, ec);
+  unregister_temporary(slot_);
+}
+
+void PendingTemporary::keep() {
+  // Unregistered first: once the name is gone, a signal must not remove anything (it could be
+  // reused).
+  unregister_temporary(slot_);
+  slot_ = -2;
+}
+
+AtomicOutput::AtomicOutput(std::filesystem::path target, bool binary)
+    : target_(std::move(target)), kind_(output_kind(target_)) {
+  const std::ios::openmode mode = binary ? std::ios::out | std::ios::binary : std::ios::out;
+  const std::string name = output_name(target_);
+  switch (kind_) {
+    case OutputKind::Stdout:
+      stream_ = &std::cout;
+      return;
+    case OutputKind::Direct: {
+      resolved_ = target_;
+      const std::optional<int> fd = own_descriptor(target_);
+      if (fd == 2) {
+        stream_ = &std::cerr;
+        return;
+      }
+      // A descriptor of the process is appended to as it stands; a device or pipe has no
+      // contents to truncate.
+      file_.open(resolved_, fd ? mode | std::ios::app : mode);
+      if (!file_) throw InputError(name, "output", std::string("cannot open for writing (") + std::strerror(errno) + ")");
+      stream_ = &file_;
+      return;
+    }
+    case OutputKind::File: {
+      resolved_ = resolve_output_path(target_);
+      std::error_code ec;
+      if (std::filesystem::is_directory(resolved_, ec)) throw InputError(name, "output", "is a directory");
+      temp_ = resolved_;
+      temp_ += ".tmp-" + std::to_string(::getpid());
+      pending_ = std::make_unique<PendingTemporary>(temp_);
+      file_.open(temp_, mode | std::ios::trunc);
+      if (!file_) {
+        pending_.reset();
+        throw InputError(name, "output", "cannot open for writing");
+      }
+      stream_ = &file_;
+      return;
+    }
   }
 }
 
 AtomicOutput::~AtomicOutput() {
-  if (!committed_) {
-    out_.close();
-    std::error_code ec;
-    std::filesystem::remove(temp_, ec);
+  if (file_.is_open()) file_.close();
+  pending_.reset();  // removes the temporary unless it was moved into place
+  if (kind_ != OutputKind::File && !committed_ && stream_) stream_->flush();
+}
+
+const std::filesystem::path& AtomicOutput::temp_path() {
+  if (temp_.empty()) {
+    // A device, pipe or standard output: the writer writes a regular file, copied in at commit.
+    temp_ = std::filesystem::temp_directory_path() /
+            ("tessim-" + std::to_string(::getpid()) + "-" + std::to_string(g_external_temporaries++) +
+             target_.filename().string() + ".tmp");
+    pending_ = std::make_unique<PendingTemporary>(temp_);
   }
-  unregister_temporary(slot_);
+  return temp_;
 }
 
 void AtomicOutput::commit() {
-  out_.flush();
-  if (!out_) throw InputError(target_.string(), "output", "write failed");
-  out_.close();
-  commit_external();
+  const std::string name = output_name(target_);
+  stream_->flush();
+  if (!*stream_) throw InputError(name, "output", "write failed");
+  if (file_.is_open()) {
+    file_.close();
+    if (!file_) throw InputError(name, "output", "write failed");
+  }
+  if (kind_ == OutputKind::File) {
+    std::error_code ec;
+    std::filesystem::rename(temp_, resolved_, ec);
+    if (ec) throw InputError(name, "output", "cannot move into place: " + ec.message());
+    pending_->keep();
+  }
+  committed_ = true;
 }
 
 void AtomicOutput::commit_external() {
-  if (out_.is_open()) out_.close();
-  std::error_code ec;
-  std::filesystem::rename(temp_, target_, ec);
-  if (ec) throw InputError(target_.string(), "output", "cannot move into place: " + ec.message());
-  committed_ = true;
-  // The temporary is gone: a signal now must not remove anything (the name could be reused).
-  unregister_temporary(slot_);
-  slot_ = -1;
+  const std::string name = output_name(target_);
+  if (kind_ == OutputKind::File) {
+    if (file_.is_open()) file_.close();
+    std::error_code ec;
+    std::filesystem::rename(temp_, resolved_, ec);
+    if (ec) throw InputError(name, "output", "cannot move into place: " + ec.message());
+    pending_->keep();
+    committed_ = true;
+    return;
+  }
+  std::ifstream in(temp_path(), std::ios::binary);
+  if (!in) throw InputError(name, "output", "the written temporary " + temp_.string() + " cannot be read back");
+  std::array<char, 1 << 16> buffer;
+  while (in.read(buffer.data(), buffer.size()) || in.gcount() > 0) {
+    stream_->write(buffer.data(), in.gcount());
+    if (!*stream_) throw InputError(name, "output", "write failed");
+  }
+  if (in.bad()) throw InputError(name, "output", "the written temporary " + temp_.string() + " cannot be read back");
+  in.close();
+  pending_.reset();  // the copy is complete: the temporary goes
+  commit();
 }
 
 }  // namespace tessim

@@ -1,16 +1,61 @@
-// All-or-nothing output files: data goes to a temporary file beside the target and is renamed
-// into place only when complete, so a failed run never leaves a half-written result
-// (docs/architecture.md, Bad input). Pending temporaries are also removed when the process is
-// killed by SIGINT, SIGTERM or SIGHUP: the first AtomicOutput installs handlers for those
-// signals (where they are not ignored or handled already) that unlink every pending temporary
-// and re-raise the signal.
+// Output files (docs/architecture.md, Bad input). What an output path names decides how it is
+// written, once, when the output is opened:
+//   - a regular file or a path that does not exist yet: all-or-nothing. Data goes to a temporary
+//     file beside the target and is renamed into place only when complete, so a failed run never
+//     leaves a half-written result. A symbolic link is followed first: its final target is
+//     replaced and the link stays a link.
+//   - a character device, FIFO or socket (/dev/null, a named pipe, a terminal) and the names of
+//     the process's own streams (/dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N): written
+//     directly, as a shell redirection would. There is nothing to rename, and nothing to remove
+//     when the run fails: a reader of the pipe has seen what was written.
+//   - "-": standard output, written directly.
+// Pending temporaries are also removed when the process is killed by SIGINT, SIGTERM or SIGHUP:
+// the first temporary installs handlers for those signals (where they are not ignored or handled
+// already) that unlink every pending temporary and re-raise the signal.
 #pragma once
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <ostream>
 #include <string>
 
 namespace tessim {
+
+enum class OutputKind {
+  File,    // temporary beside the (link-resolved) target, renamed into place by commit()
+  Direct,  // a device, FIFO, socket or a name of one of the process's streams: written in place
+  Stdout,  // "-", /dev/stdout, /dev/fd/1, /proc/self/fd/1: std::cout
+};
+
+// How `path` is written (see above). Decided from what the path names now.
+OutputKind output_kind(const std::filesystem::path& path);
+
+// The path a regular output replaces: `path` with every symbolic link along it followed (relative
+// links against the directory of the link), whether or not the final target exists yet.
+std::filesystem::path resolve_output_path(const std::filesystem::path& path);
+
+// The name of an output in messages: "standard output" for "-", else the path.
+std::string output_name(const std::filesystem::path& path);
+
+// A file removed when the process is killed by SIGINT, SIGTERM or SIGHUP (see above), and when
+// this object is destroyed unless keep() was called: for temporaries that a library creates by
+// name (a waveform recording, its side files).
+class PendingTemporary {
+ public:
+  explicit PendingTemporary(std::filesystem::path path);
+  PendingTemporary(const PendingTemporary&) = delete;
+  PendingTemporary& operator=(const PendingTemporary&) = delete;
+  ~PendingTemporary();
+
+  const std::filesystem::path& path() const { return path_; }
+  // The file is no longer this object's to remove (renamed away, or removed by its writer).
+  void keep();
+
+ private:
+  std::filesystem::path path_;
+  int slot_ = -1;  // entry in the table of temporaries the signal handler removes
+};
 
 class AtomicOutput {
  public:
@@ -19,20 +64,27 @@ class AtomicOutput {
   AtomicOutput& operator=(const AtomicOutput&) = delete;
   ~AtomicOutput();  // removes the temporary file unless commit() succeeded
 
-  std::ofstream& stream() { return out_; }
-  // Path of the temporary file, for writers (e.g. OpenImageIO) that open files themselves.
-  const std::filesystem::path& temp_path() const { return temp_; }
-  // Flushes, checks for write errors and renames into place. Throws InputError on failure.
+  OutputKind kind() const { return kind_; }
+  std::ostream& stream() { return *stream_; }
+  // Path for writers (e.g. OpenImageIO) that open files themselves: the temporary of a regular
+  // output, else a temporary file in the system's temporary directory that commit_external()
+  // copies into the device, pipe or standard output (such writers may seek, which a pipe
+  // cannot).
+  const std::filesystem::path& temp_path();
+  // Flushes, checks for write errors and moves a temporary into place. Throws InputError.
   void commit();
-  // For writers that wrote temp_path() themselves: rename into place.
+  // For writers that wrote temp_path() themselves: rename into place, or copy into the device.
   void commit_external();
 
  private:
-  std::filesystem::path target_;
+  std::filesystem::path target_;    // as given
+  std::filesystem::path resolved_;  // the file replaced (File) or opened (Direct)
   std::filesystem::path temp_;
-  std::ofstream out_;
+  OutputKind kind_;
+  std::ofstream file_;
+  std::ostream* stream_ = nullptr;
   bool committed_ = false;
-  int slot_ = -1;  // entry in the table of temporaries the signal handler removes
+  std::unique_ptr<PendingTemporary> pending_;
 };
 
 }  // namespace tessim

@@ -66,24 +66,21 @@ char* put_face(char* out, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
 
 bool is_supported_output(const std::filesystem::path& path) {
   const std::string ext = io::lower_extension(path);
-  return ext == ".ply" || ext == ".obj" || path == "-";
+  // Standard output, a device or a pipe needs no extension: it gets binary PLY.
+  return ext == ".ply" || ext == ".obj" || output_kind(path) != OutputKind::File;
 }
 
 struct MeshWriter::Impl {
   Impl(const std::filesystem::path& target, bool ply, std::uint64_t vertices, std::uint64_t triangles)
       : path(target), is_ply(ply), total_vertices(vertices), total_triangles(triangles) {
-    if (target == "-") {
-      stream = &std::cout;
-    } else {
-      file.emplace(target, ply);
-      stream = &file->stream();
-    }
+    file.emplace(target, ply);
+    stream = &file->stream();
     buffer.reserve(2 * kBlock);  // a block and the patch that completes it: no reallocation
   }
 
   std::filesystem::path path;
   bool is_ply;
-  std::optional<AtomicOutput> file;  // none for standard output
+  std::optional<AtomicOutput> file;
   std::ostream* stream = nullptr;
   std::uint64_t total_vertices;
   std::uint64_t total_triangles;
@@ -111,14 +108,14 @@ struct MeshWriter::Impl {
   void write_buffer() {
     stream->write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
     buffer.clear();
-    if (!*stream) throw InputError(path == "-" ? "standard output" : path.string(), "output", "write failed");
+    if (!*stream) throw InputError(output_name(path), "output", "write failed");
   }
 };
 
 MeshWriter::MeshWriter(const std::filesystem::path& path, std::uint64_t total_vertices, std::uint64_t total_triangles) {
   if (!is_supported_output(path))
     throw InputError(path.string(), "output", "unsupported extension '" + path.extension().string() + "' (use .ply or .obj)");
-  const bool ply = path == "-" || io::lower_extension(path) == ".ply";
+  const bool ply = io::lower_extension(path) != ".obj";
   if (ply && total_vertices > std::numeric_limits<std::uint32_t>::max())
     throw InputError(path.string(), "output", std::to_string(total_vertices) + " vertices do not fit PLY's 32-bit indices");
   impl_ = std::make_unique<Impl>(path, ply, total_vertices, total_triangles);
@@ -240,12 +237,7 @@ void MeshWriter::finish() {
     }
   }
   w.write_buffer();
-  if (w.file) {
-    w.file->commit();
-  } else {
-    w.stream->flush();
-    if (!*w.stream) throw InputError("standard output", "output", "write failed");
-  }
+  w.file->commit();
   w.finished = true;
 }
 
