@@ -435,8 +435,8 @@ def fmt_time(s):
 
 class Progress:
     """Progress bar with rate and ETA on stderr, redrawn in place; only on a terminal and without
-    --quiet. The ETA weighs each point by its expected simulated cycles; the rate counts the points
-    run (not those taken from the cache)."""
+    --quiet (otherwise only the final line). The ETA weighs each point by its expected simulated
+    cycles; the rate counts the points run (not those taken from the cache)."""
 
     def __init__(self, total_points, cached, total_weight, quiet=False):
         self.total = total_points
@@ -459,7 +459,8 @@ class Progress:
 
     def draw(self, force=False, final=False):
         now = time.monotonic()
-        if not self.shown or (not force and not final and now - self.last < 0.1):
+        # Off the terminal (or --quiet) only the final line, a summary like the rows line after it.
+        if (not self.shown and not final) or (not force and not final and now - self.last < 0.1):
             return
         self.last = now
         elapsed = now - self.start
@@ -473,7 +474,10 @@ class Progress:
         msg = (f"[{bar}] {self.done}/{self.total} points ({self.cached} cached"
                f"{', %d rejected' % self.failed if self.failed else ''}) "
                f"{rate:.3g} points/s elapsed {fmt_time(elapsed)} ETA {fmt_time(0 if final else eta)}")
-        sys.stderr.write("\r" + msg.ljust(self.width) + ("\n" if final else ""))
+        if self.shown:
+            sys.stderr.write("\r" + msg.ljust(self.width) + ("\n" if final else ""))
+        else:
+            sys.stderr.write(msg + "\n")
         self.width = len(msg)
         sys.stderr.flush()
 
