@@ -36,9 +36,10 @@ std::string slurp(const fs::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// Runs tessim with standard error on a pseudo-terminal (standard output to /dev/null) and
-// returns what the terminal received; `status` the exit status.
-std::string run_on_terminal(const std::vector<std::string>& args, int& status) {
+// Runs `program` (default: tessim) with standard error on a pseudo-terminal (standard output to
+// /dev/null) and returns what the terminal received; `status` the exit status.
+std::string run_on_terminal(const std::vector<std::string>& args, int& status,
+                            const std::string& program = TESSIM_BINARY) {
   int master = -1, slave = -1;
   if (::openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) {
     ADD_FAILURE() << "openpty failed";
@@ -51,7 +52,7 @@ std::string run_on_terminal(const std::vector<std::string>& args, int& status) {
     ::dup2(null, 1);
     ::dup2(slave, 2);
     std::vector<char*> argv;
-    std::string binary = TESSIM_BINARY;
+    std::string binary = program;
     argv.push_back(binary.data());
     std::vector<std::string> copy = args;
     for (std::string& a : copy) argv.push_back(a.data());
@@ -127,6 +128,26 @@ TEST(ProgressCli, TessellateOnATerminalShowsProgress) {
   ASSERT_EQ(status, 0) << terminal;
   EXPECT_TRUE(contains(terminal, "\rtessellate  ")) << terminal;
   EXPECT_TRUE(contains(terminal, "vertices/s")) << terminal;
+}
+
+TEST(ProgressCli, SweepOnATerminalShowsPointsRateAndTimeLeft) {
+  TempDir d;
+  const std::string sweep = std::string(TESSIM_SOURCE_DIR) + "/scripts/sweep.py";
+  const std::string spec = std::string(TESSIM_SOURCE_DIR) + "/scripts/sweeps/smoke.json";
+  int status = -1;
+  const std::string terminal = run_on_terminal(
+      {sweep, spec, "-o", (d.path() / "tty.csv").string(), "--tessim", TESSIM_BINARY}, status, "/usr/bin/python3");
+  ASSERT_EQ(status, 0) << terminal;
+  EXPECT_TRUE(contains(terminal, "\r[")) << terminal;
+  EXPECT_TRUE(contains(terminal, "4/4 points (0 cached)")) << terminal;
+  EXPECT_TRUE(contains(terminal, "points/s")) << terminal;
+  EXPECT_TRUE(contains(terminal, "ETA ")) << terminal;
+  // Quiet: the final summary line alone, not redrawn in place.
+  const std::string quiet = run_on_terminal(
+      {sweep, spec, "-o", (d.path() / "quiet.csv").string(), "--tessim", TESSIM_BINARY, "--quiet"}, status,
+      "/usr/bin/python3");
+  ASSERT_EQ(status, 0) << quiet;
+  EXPECT_FALSE(contains(quiet, "\r[")) << quiet;
 }
 
 }  // namespace
