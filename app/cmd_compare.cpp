@@ -1,11 +1,15 @@
-// tessim compare A.json B.json [--csv]: two runs' statistics (tessim sim --stats) side by side,
-// every configuration key that differs first, then every number with the ratio B/A and its unit.
+// tessim compare A.json B.json [--csv] [--changed] [--key PREFIX]: two runs' statistics (tessim
+// sim --stats) side by side, every configuration key that differs first, then every number with
+// the ratio B/A and its unit, keys in natural order (histogram bins 0, 1, 2, 10).
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -14,6 +18,7 @@
 #include "app/commands.hpp"
 #include "model/error.hpp"
 #include "model/input_file.hpp"
+#include "sim/json_input.hpp"
 #include "sim/simulate.hpp"
 
 namespace tessim::app {
@@ -25,24 +30,61 @@ using nlohmann::json;
 struct CompareArgs {
   std::string a, b;
   bool csv = false;
+  bool changed = false;              // only the figures that differ
+  std::vector<std::string> prefixes;  // only the keys that start with one of these
 };
 
+// Every field the comparison reads beyond the numbers is checked here, before anything is
+// printed: a statistics file is refused whole or compared whole.
 json read_stats(const std::string& path) {
-  const std::string text = read_whole_file(path, kDataFileLimit, "file");
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    throw InputError(path, "JSON", e.what());
-  }
+  const json j = sim::parse_json_text(read_whole_file(path, kDataFileLimit, "file"), path);
   if (!j.is_object() || !j.contains("cycles") || !j.contains("config"))
     throw InputError(path, "statistics", "not the statistics of `tessim sim --stats` (no cycles or config)");
+  if (j.contains("schema_version") && !j["schema_version"].is_number_unsigned())
+    throw InputError(path, "schema_version", j["schema_version"].dump() + " is not a non-negative integer");
+  if (j.contains("tool")) {
+    const json& tool = j["tool"];
+    if (!tool.is_object()) throw InputError(path, "tool", tool.dump() + " is not an object");
+    if (tool.contains("version") && !tool["version"].is_string())
+      throw InputError(path, "tool.version", tool["version"].dump() + " is not a string");
+  }
   return j;
 }
 
+// Keys compared as text, except that runs of digits compare as numbers: "bins.2" < "bins.10".
+struct NaturalLess {
+  bool operator()(const std::string& a, const std::string& b) const {
+    std::size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+      const bool da = std::isdigit(static_cast<unsigned char>(a[i])) != 0;
+      const bool db = std::isdigit(static_cast<unsigned char>(b[j])) != 0;
+      if (da && db) {
+        std::size_t ei = i, ej = j;
+        while (ei < a.size() && std::isdigit(static_cast<unsigned char>(a[ei]))) ++ei;
+        while (ej < b.size() && std::isdigit(static_cast<unsigned char>(b[ej]))) ++ej;
+        // Without leading zeros the longer run is the larger number.
+        std::size_t si = i, sj = j;
+        while (si + 1 < ei && a[si] == '0') ++si;
+        while (sj + 1 < ej && b[sj] == '0') ++sj;
+        if (ei - si != ej - sj) return ei - si < ej - sj;
+        if (const int c = a.compare(si, ei - si, b, sj, ej - sj); c != 0) return c < 0;
+        if (ei - i != ej - j) return ei - i < ej - j;
+        i = ei;
+        j = ej;
+        continue;
+      }
+      if (a[i] != b[j]) return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]);
+      ++i;
+      ++j;
+    }
+    return a.size() - i < b.size() - j;
+  }
+};
+using FlatStats = std::map<std::string, json, NaturalLess>;
+
 // Every number and string of `j` by its path; array elements are numbered ("int.blocks.1.busy")
 // and looked up in the units table as "[]".
-void flatten(const json& j, const std::string& path, std::map<std::string, json>& out) {
+void flatten(const json& j, const std::string& path, FlatStats& out) {
   if (j.is_object()) {
     for (const auto& [k, v] : j.items()) flatten(v, path.empty() ? k : path + "." + k, out);
   } else if (j.is_array()) {
@@ -70,8 +112,13 @@ std::string unit_key(const std::string& path) {
 std::string text(const json& v) {
   if (v.is_string()) return v.get<std::string>();
   if (v.is_number_float()) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v.get<double>());
+    // A count stored as a double (analytic.run_cycles) prints exactly, as the integer it is.
+    const double x = v.get<double>();
+    char buf[400];
+    if (std::isfinite(x) && x == std::nearbyint(x) && std::abs(x) < 0x1p53)
+      std::snprintf(buf, sizeof buf, "%.0f", x);
+    else
+      std::snprintf(buf, sizeof buf, "%.6g", x);
     return buf;
   }
   return v.dump();
@@ -86,14 +133,19 @@ std::string csv_field(const std::string& s) {
 
 void run(const CompareArgs& args) {
   const json a = read_stats(args.a), b = read_stats(args.b);
-  std::map<std::string, json> fa, fb;
+  FlatStats fa, fb;
   flatten(a, "", fa);
   flatten(b, "", fb);
   const json units = sim::stats_units();
-  std::vector<std::string> keys;
-  for (const auto& [k, v] : fa) keys.push_back(k);
-  for (const auto& [k, v] : fb)
-    if (!fa.contains(k)) keys.push_back(k);
+  std::set<std::string, NaturalLess> keys;
+  for (const auto& [k, v] : fa) keys.insert(k);
+  for (const auto& [k, v] : fb) keys.insert(k);
+  auto selected = [&args](const std::string& key) {
+    if (args.prefixes.empty()) return true;
+    for (const std::string& p : args.prefixes)
+      if (key.rfind(p, 0) == 0) return true;
+    return false;
+  };
 
   struct Row {
     std::string key, va, vb, ratio, unit;
@@ -103,6 +155,7 @@ void run(const CompareArgs& args) {
     // The timeline's buckets are a time series, not figures of the run (and two runs' buckets
     // differ in width): left out.
     if (k.rfind("units.", 0) == 0 || k.rfind("tool.", 0) == 0 || k.rfind("timeline.", 0) == 0) continue;
+    if (!selected(k)) continue;
     const json* x = fa.contains(k) ? &fa.at(k) : nullptr;
     const json* y = fb.contains(k) ? &fb.at(k) : nullptr;
     Row r{k, x ? text(*x) : "-", y ? text(*y) : "-", "", ""};
@@ -110,6 +163,7 @@ void run(const CompareArgs& args) {
       if (r.va != r.vb) config.push_back(r);
       continue;
     }
+    if (args.changed && x && y && *x == *y) continue;
     if (x && y && x->is_number() && y->is_number()) {
       const double p = x->get<double>(), q = y->get<double>();
       if (p != 0) {
@@ -170,6 +224,9 @@ void register_compare(CLI::App& app) {
   sub->add_option("a", args->a, "statistics JSON of run A")->required();
   sub->add_option("b", args->b, "statistics JSON of run B")->required();
   sub->add_flag("--csv", args->csv, "print CSV (key, a, b, ratio_b_over_a, unit) instead of a table");
+  sub->add_flag("--changed", args->changed, "only the figures that differ between A and B");
+  sub->add_option("--key", args->prefixes,
+                  "only the keys that start with this prefix (e.g. analytic., int.blocks); repeatable");
   sub->callback([args]() { run(*args); });
 }
 

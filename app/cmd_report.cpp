@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sim/json_input.hpp"
 #include "app/commands.hpp"
 #include "app/report_html.hpp"
 #include "model/error.hpp"
@@ -60,12 +61,7 @@ void run_report(const ReportArgs& a) {
       throw InputError(a.output, "-o", std::string("is the input ") + option + " " + path + ": it would be overwritten");
 
   const std::string text = read_whole_file(a.stats, kDataFileLimit, "file");
-  json stats;
-  try {
-    stats = json::parse(text);
-  } catch (const json::exception& e) {
-    throw InputError(a.stats, "JSON", e.what());
-  }
+  const json stats = sim::parse_json_text(text, a.stats);
 
   ReportInput in;
   in.stats_name = a.stats;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "model/error.hpp"
 #include "sim/params.hpp"
 
 namespace tessim::app {
@@ -15,8 +16,15 @@ void register_schema(CLI::App& app) {
   auto indent = std::make_shared<int>(2);
   CLI::App* sub = app.add_subcommand(
       "schema", "Print the unit's parameters, INT operations, statistics and CPG cycles as JSON");
-  sub->add_option("--indent", *indent, "JSON indentation (-1: one line)")->capture_default_str();
-  sub->callback([indent] { std::cout << sim::schema_json().dump(*indent) << "\n"; });
+  // Bounded: nlohmann's dump() writes past its buffer for indents in the thousands.
+  sub->add_option("--indent", *indent, "JSON indentation in spaces, 0..16 (-1: one line)")
+      ->transform(number_check<int>("command line", "--indent", "-1..16"))
+      ->capture_default_str();
+  sub->callback([indent] {
+    if (*indent < -1 || *indent > 16)
+      throw InputError("command line", "--indent", "'" + std::to_string(*indent) + "' is outside -1..16");
+    std::cout << sim::schema_json().dump(*indent) << "\n";
+  });
 }
 
 }  // namespace tessim::app

@@ -35,11 +35,11 @@ std::string number_text(double x) {
 void run_stpn_import(const StpnImportArgs& args) {
   // Everything the command line decides is checked before the mesh is read.
   if (!(args.crease_angle > 0.0 && args.crease_angle < 180.0))
-    throw InputError("stpn-import", "--crease-angle", number_text(args.crease_angle) + " is outside (0, 180) degrees");
+    throw InputError("command line", "--crease-angle", number_text(args.crease_angle) + " is outside (0, 180) degrees");
   if (!(args.sigma >= 0.0 && args.sigma <= 1000.0))
-    throw InputError("stpn-import", "--sigma", number_text(args.sigma) + " is outside 0..1000");
+    throw InputError("command line", "--sigma", number_text(args.sigma) + " is outside 0..1000");
   if (!(args.corner_tension >= -1.0 && args.corner_tension <= 1.0))
-    throw InputError("stpn-import", "--corner-tension", number_text(args.corner_tension) + " is outside -1..1");
+    throw InputError("command line", "--corner-tension", number_text(args.corner_tension) + " is outside -1..1");
   // Standard output, a device or a pipe gets the PLY whatever its name.
   const OutputKind kind = output_kind(args.output);
   if (kind == OutputKind::File && io::lower_extension(args.output) != ".ply")
@@ -94,13 +94,13 @@ void register_stpn_import(CLI::App& app) {
       cmd->add_option("--crease-angle", args->crease_angle,
                       "Degrees between face normals above which an edge is a crease (default 30 without normals "
                       "in the file; with them, their splits are the creases unless this is given)")
-          ->transform(number_check<double>("stpn-import", "--crease-angle", "(0, 180)"));
+          ->transform(number_check<double>("command line", "--crease-angle", "(0, 180)"));
   cmd->add_option("--sigma", args->sigma, "Sharpness of the tagged vertices (1 reproduces both side normals)")
-      ->transform(number_check<double>("stpn-import", "--sigma", "0..1000"))
+      ->transform(number_check<double>("command line", "--sigma", "0..1000"))
       ->capture_default_str();
   cmd->add_option("--corner-tension", args->corner_tension,
                   "Tension theta of corners, where three or more creases meet (1 keeps them pointed)")
-      ->transform(number_check<double>("stpn-import", "--corner-tension", "-1..1"))
+      ->transform(number_check<double>("command line", "--corner-tension", "-1..1"))
       ->capture_default_str();
   cmd->callback([args, angle] {
     args->crease_angle_given = angle->count() > 0;

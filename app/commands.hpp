@@ -45,7 +45,13 @@ struct AdaptiveOptions {
   std::string adaptive, camera, viewport = "1280x720";
   double pixels_per_segment = 16.0;
 
+  // Set by add_adaptive_options: whether --viewport and --pixels-per-segment were given.
+  const CLI::Option* viewport_option = nullptr;
+  const CLI::Option* pixels_per_segment_option = nullptr;
+
   bool given() const { return !adaptive.empty(); }
+  // Without --adaptive: InputError when --camera, --viewport or --pixels-per-segment was given.
+  void check_given_alone() const;
   // Makes `s` adaptive with this camera (InputError(command, option, reason) when malformed).
   void apply(TessSettings& s, const char* command) const;
 };
@@ -140,6 +146,9 @@ void check_output_paths(const std::vector<OutputPath>& outputs);
 // The cycle model and the RTL compute plain PN triangles: a scalar-tagged mesh's tags do not
 // reach them. Prints a warning saying so when `mesh` has tags that change anything.
 void warn_tags_ignored(const Mesh& mesh, const char* command);
+// With --cpg-tags 1: a warning with the count of vertices whose tags vanish in the fixed-point
+// input (sim::tags_lost_in_fixed_point).
+void warn_tags_lost(const Mesh& mesh, const sim::NumberFormat& format);
 
 void register_info(CLI::App& app);
 void register_tessellate(CLI::App& app);

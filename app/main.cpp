@@ -1,6 +1,9 @@
 // tessim: simulator of a PN-triangle tessellation unit (float reference, cycle model, RTL).
 #include <cstdio>
 #include <exception>
+#include <memory>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "model/error.hpp"
@@ -8,6 +11,35 @@
 #include "sim/version.hpp"
 
 namespace {
+
+// CLI11's help puts "Needs: --x" and "Excludes: --y" on the option's name line, where they read
+// as part of the syntax. Here they end the description instead.
+class HelpFormatter : public CLI::Formatter {
+ public:
+  std::string make_option_opts(const CLI::Option* opt) const override {
+    std::stringstream out;
+    if (!opt->get_option_text().empty()) return " " + opt->get_option_text();
+    if (opt->get_type_size() != 0) {
+      if (!opt->get_type_name().empty()) out << " " << get_label(opt->get_type_name());
+      if (!opt->get_default_str().empty()) out << "=" << opt->get_default_str();
+      if (opt->get_expected_max() == CLI::detail::expected_max_vector_size) out << " ...";
+      else if (opt->get_expected_min() > 1) out << " x " << opt->get_expected();
+      if (opt->get_required()) out << " " << get_label("REQUIRED");
+    }
+    return out.str();
+  }
+  std::string make_option_desc(const CLI::Option* opt) const override {
+    std::string desc = opt->get_description();
+    auto names = [](const std::set<CLI::Option*>& options) {
+      std::string s;
+      for (const CLI::Option* o : options) s += (s.empty() ? "" : ", ") + o->get_name();
+      return s;
+    };
+    if (!opt->get_needs().empty()) desc += " (needs " + names(opt->get_needs()) + ")";
+    if (!opt->get_excludes().empty()) desc += " (excludes " + names(opt->get_excludes()) + ")";
+    return desc;
+  }
+};
 
 // A command-line error CLI11 found itself (an unknown option, a missing argument, a failed
 // CLI11 check), in the form of every other bad input: "command line: ELEMENT: REASON".
@@ -17,7 +49,9 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e) {
     std::string commands;
     for (const CLI::App* sub : app.get_subcommands({}))
       commands += (commands.empty() ? "" : ", ") + sub->get_name();
-    return "command line: " + app.remaining().front() + ": not a tessim command (the commands are " + commands + ")";
+    return tessim::InputError("command line", app.remaining().front(),
+                              "not a tessim command (the commands are " + commands + ")")
+        .what();
   }
   std::string reason = e.what();
   std::string element = "arguments";
@@ -29,7 +63,7 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e) {
       reason = reason.substr(colon + 2);
     }
   }
-  return "command line: " + element + ": " + reason + " (see tessim --help)";
+  return tessim::InputError("command line", element, reason + " (see tessim --help)").what();
 }
 
 }  // namespace
@@ -37,6 +71,7 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e) {
 int main(int argc, char** argv) {
   CLI::App app{"tessim: PN-triangle tessellation unit simulator (reference, cycle model, RTL)"};
   app.require_subcommand(1);
+  app.formatter(std::make_shared<HelpFormatter>());  // before the subcommands, which inherit it
   app.set_version_flag("--version", std::string("tessim 0.1.0 (") + tessim::tool_version() + ")");
   tessim::app::register_info(app);
   tessim::app::register_tessellate(app);

@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -15,18 +16,24 @@
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"
 #include "render/raster.hpp"
+#include "sim/host.hpp"
 
 namespace tessim::app {
 
-void check_tess_factor(const char* command, int factor) {
+namespace {
+// Every option error names its source as the README promises: the command line (not the command).
+const char* const kCommandLine = "command line";
+}  // namespace
+
+void check_tess_factor(const char* /*command*/, int factor) {
   if (factor < 1 || factor > kMaxTessFactor)
-    throw InputError(command, "-L", std::to_string(factor) + " is outside 1.." + std::to_string(kMaxTessFactor));
+    throw InputError(kCommandLine, "-L", std::to_string(factor) + " is outside 1.." + std::to_string(kMaxTessFactor));
 }
 
-NormalMode parse_normals_option(const char* command, const std::string& text) {
+NormalMode parse_normals_option(const char* /*command*/, const std::string& text) {
   const auto mode = parse_normal_mode(text);
   if (!mode)
-    throw InputError(command, "--normals", "'" + text + "' is not one of quadratic, reflect, linear, derivative");
+    throw InputError(kCommandLine, "--normals", "'" + text + "' is not one of quadratic, reflect, linear, derivative");
   return *mode;
 }
 
@@ -38,6 +45,11 @@ void warn_tags_ignored(const Mesh& mesh, const char* command) {
                "computes plain PN triangles (tessellate and render use the tags, and sim with --cpg-tags 1; "
                "docs/stpn.md)\n",
                mesh.source.c_str(), acting, command);
+}
+
+void warn_tags_lost(const Mesh& mesh, const sim::NumberFormat& format) {
+  const std::string warning = sim::tags_lost_warning(mesh, format);
+  if (!warning.empty()) std::fprintf(stderr, "tessim: warning: %s\n", warning.c_str());
 }
 
 void check_output_paths(const std::vector<OutputPath>& outputs) {
@@ -103,7 +115,7 @@ void add_speed_run_options(CLI::App& sub, SpeedRunArgs& args, const char* int_bl
 namespace {
 
 // "a,b,c" as numbers; each must parse whole.
-std::vector<double> parse_numbers(const char* command, const char* option, const std::string& text) {
+std::vector<double> parse_numbers(const char* option, const std::string& text) {
   std::vector<double> out;
   std::size_t start = 0;
   while (true) {
@@ -112,7 +124,7 @@ std::vector<double> parse_numbers(const char* command, const char* option, const
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size())
-      throw InputError(command, option, "'" + item + "' in '" + text + "' is not a number");
+      throw InputError(kCommandLine, option, "'" + item + "' in '" + text + "' is not a number");
     out.push_back(x);
     if (comma == std::string::npos) break;
     start = comma + 1;
@@ -120,23 +132,39 @@ std::vector<double> parse_numbers(const char* command, const char* option, const
   return out;
 }
 
-glm::dvec3 parse_point(const char* command, const std::string& key, const std::string& text) {
-  const std::vector<double> v = parse_numbers(command, "--camera", text);
-  if (v.size() != 3) throw InputError(command, "--camera", key + "=" + text + " needs three coordinates x,y,z");
+glm::dvec3 parse_point(const std::string& key, const std::string& text) {
+  const std::vector<double> v = parse_numbers("--camera", text);
+  if (v.size() != 3) throw InputError(kCommandLine, "--camera", key + "=" + text + " needs three coordinates x,y,z");
   return {v[0], v[1], v[2]};
 }
 
 }  // namespace
 
-float parse_factor(const char* command, const char* option, const std::string& text) {
+float parse_factor(const char* /*command*/, const char* option, const std::string& text) {
   const std::size_t first = text.find_first_not_of(" \t");
   const std::string t = first == std::string::npos ? "" : text.substr(first, text.find_last_not_of(" \t") - first + 1);
-  char* end = nullptr;
-  const double value = t.empty() ? 0.0 : std::strtod(t.c_str(), &end);
-  if (t.empty() || end != t.c_str() + t.size()) throw InputError(command, option, "'" + text + "' is not a number");
-  if (std::isfinite(value) && std::abs(value) > std::numeric_limits<float>::max())
-    return value > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
-  return static_cast<float>(value);
+  // Straight into a float, correctly rounded (through a double, 1 + 2^-24 + tiny would round
+  // twice and lose the last bit). from_chars takes no sign '+' and no "0x" prefix.
+  std::string_view digits = t;
+  const bool negative = !digits.empty() && digits.front() == '-';
+  if (!digits.empty() && (digits.front() == '+' || negative)) digits.remove_prefix(1);
+  auto format = std::chars_format::general;
+  if (digits.size() > 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) {
+    digits.remove_prefix(2);
+    format = std::chars_format::hex;
+  }
+  float value = 0.0f;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value, format);
+  if (digits.empty() || digits.front() == '-' || digits.front() == '+' || end != digits.data() + digits.size() ||
+      ec == std::errc::invalid_argument)
+    throw InputError(kCommandLine, option, "'" + text + "' is not a number");
+  if (ec == std::errc::result_out_of_range) {
+    // Beyond the float range: an infinity, as D3D11 would see it; below it: zero.
+    const std::string again = (format == std::chars_format::hex ? "0x" : "") + std::string(digits);
+    const double magnitude = std::strtod(again.c_str(), nullptr);
+    value = std::abs(magnitude) >= 1.0 ? std::numeric_limits<float>::infinity() : 0.0f;
+  }
+  return negative ? -value : value;
 }
 
 std::array<float, 3> parse_outer_factors(const char* command, const std::string& text) {
@@ -149,36 +177,38 @@ std::array<float, 3> parse_outer_factors(const char* command, const std::string&
     start = comma + 1;
   }
   if (parts.size() != 3)
-    throw InputError(command, "--outer",
+    throw InputError(kCommandLine, "--outer",
                      "expected 3 comma-separated factors e0,e1,e2 (edges u=0, v=0, w=0), got " +
                          std::to_string(parts.size()));
   return {parse_factor(command, "--outer", parts[0]), parse_factor(command, "--outer", parts[1]),
           parse_factor(command, "--outer", parts[2])};
 }
 
-Partitioning parse_partitioning_option(const char* command, const std::string& text) {
+Partitioning parse_partitioning_option(const char* /*command*/, const std::string& text) {
   const std::optional<Partitioning> p = parse_partitioning(text);
   if (!p)
-    throw InputError(command, "--partitioning",
+    throw InputError(kCommandLine, "--partitioning",
                      "'" + text + "' is not one of integer, pow2, fractional_odd, fractional_even");
   return *p;
 }
 
-void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& o, const char* command) {
+void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& o, const char* /*command*/) {
   cmd.add_option("--adaptive", o.adaptive,
                  "'screen': factors per edge from the edge's projected length (docs/patterns.md)");
   cmd.add_option("--camera", o.camera, "with --adaptive: eye=x,y,z[,target=x,y,z][,fov=deg] (fov default 45)");
-  cmd.add_option("--viewport", o.viewport, "with --adaptive: viewport WxH in pixels")->capture_default_str();
-  cmd.add_option("--pixels-per-segment", o.pixels_per_segment, "with --adaptive: target on-screen length of a segment")
-      ->transform(number_check<double>(command, "--pixels-per-segment", "positive numbers"))
-      ->capture_default_str();
+  o.viewport_option =
+      cmd.add_option("--viewport", o.viewport, "with --adaptive: viewport WxH in pixels")->capture_default_str();
+  o.pixels_per_segment_option =
+      cmd.add_option("--pixels-per-segment", o.pixels_per_segment, "with --adaptive: target on-screen length of a segment")
+          ->transform(number_check<double>(kCommandLine, "--pixels-per-segment", "positive numbers"))
+          ->capture_default_str();
 }
 
 void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) {
   cmd.add_option("-L,--tess-factor,--factor", o.factor,
                  "Tessellation factor: segments per edge (1..64) of the uniform pattern, or every factor of the "
                  "D3D11 pattern with --partitioning")
-      ->transform(number_check<int>(command, "-L", "1..64"))
+      ->transform(number_check<int>(kCommandLine, "-L", "1..64"))
       ->capture_default_str();
   cmd.add_option("--partitioning", o.partitioning,
                  "D3D11 pattern spacing: integer, pow2, fractional_odd, fractional_even (default: the uniform "
@@ -188,9 +218,20 @@ void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) 
   add_adaptive_options(cmd, o.adaptive, command);
 }
 
+void AdaptiveOptions::check_given_alone() const {
+  if (given()) return;
+  if (!camera.empty()) throw InputError(kCommandLine, "--camera", "needs --adaptive screen");
+  // A viewport or a segment length means nothing without adaptive factors: refused rather
+  // than silently ignored.
+  if (viewport_option && viewport_option->count() > 0)
+    throw InputError(kCommandLine, "--viewport", "needs --adaptive screen");
+  if (pixels_per_segment_option && pixels_per_segment_option->count() > 0)
+    throw InputError(kCommandLine, "--pixels-per-segment", "needs --adaptive screen");
+}
+
 void AdaptiveOptions::apply(TessSettings& s, const char* command) const {
-  if (adaptive != "screen") throw InputError(command, "--adaptive", "'" + adaptive + "' is not 'screen'");
-  if (camera.empty()) throw InputError(command, "--camera", "--adaptive screen needs --camera eye=x,y,z");
+  if (adaptive != "screen") throw InputError(kCommandLine, "--adaptive", "'" + adaptive + "' is not 'screen'");
+  if (camera.empty()) throw InputError(kCommandLine, "--camera", "--adaptive screen needs --camera eye=x,y,z");
   s.kind = PatternKind::D3D11;
   s.source = FactorSource::Adaptive;
   // key=value items; a value's own commas belong to it until the next "key=".
@@ -198,7 +239,7 @@ void AdaptiveOptions::apply(TessSettings& s, const char* command) const {
   std::size_t start = 0;
   while (start < camera.size()) {
     const std::size_t eq = camera.find('=', start);
-    if (eq == std::string::npos) throw InputError(command, "--camera", "'" + camera + "' is not key=value,...");
+    if (eq == std::string::npos) throw InputError(kCommandLine, "--camera", "'" + camera + "' is not key=value,...");
     const std::string key = camera.substr(start, eq - start);
     std::size_t next = camera.size();
     for (const char* k : {",eye=", ",target=", ",fov="}) next = std::min(next, camera.find(k, eq));
@@ -206,19 +247,23 @@ void AdaptiveOptions::apply(TessSettings& s, const char* command) const {
     start = next == camera.size() ? next : next + 1;
   }
   bool has_eye = false;
+  std::vector<std::string> seen;
   for (const auto& [key, value] : items) {
+    if (std::find(seen.begin(), seen.end(), key) != seen.end())
+      throw InputError(kCommandLine, "--camera", "'" + key + "' is given twice in '" + camera + "'");
+    seen.push_back(key);
     if (key == "eye") {
-      s.camera.eye = parse_point(command, key, value);
+      s.camera.eye = parse_point(key, value);
       has_eye = true;
     } else if (key == "target") {
-      s.camera.target = parse_point(command, key, value);
+      s.camera.target = parse_point(key, value);
     } else if (key == "fov") {
-      s.camera.fov_deg = parse_numbers(command, "--camera", value).at(0);
+      s.camera.fov_deg = parse_numbers("--camera", value).at(0);
     } else {
-      throw InputError(command, "--camera", "unknown key '" + key + "' (eye, target, fov)");
+      throw InputError(kCommandLine, "--camera", "unknown key '" + key + "' (eye, target, fov)");
     }
   }
-  if (!has_eye) throw InputError(command, "--camera", "needs eye=x,y,z");
+  if (!has_eye) throw InputError(kCommandLine, "--camera", "needs eye=x,y,z");
   const glm::ivec2 size = parse_image_size(viewport, "--viewport");
   s.camera.width = size.x;
   s.camera.height = size.y;
@@ -230,9 +275,9 @@ TessSettings PatternOptions::settings(const char* command) const {
   s.L = factor;
   check_tess_factor(command, factor);
   const bool fixed = !outer.empty() || !inner.empty();
-  if (fixed && adaptive.given()) throw InputError(command, "--outer", "cannot be combined with --adaptive");
-  if (!inner.empty() && outer.empty()) throw InputError(command, "--inner", "needs --outer");
-  if (!adaptive.given() && !adaptive.camera.empty()) throw InputError(command, "--camera", "needs --adaptive screen");
+  if (fixed && adaptive.given()) throw InputError(kCommandLine, "--outer", "cannot be combined with --adaptive");
+  if (!inner.empty() && outer.empty()) throw InputError(kCommandLine, "--inner", "needs --outer");
+  adaptive.check_given_alone();
   if (partitioning.empty() && !fixed && !adaptive.given()) return s;  // the uniform pattern
 
   s.kind = PatternKind::D3D11;
@@ -245,7 +290,12 @@ TessSettings PatternOptions::settings(const char* command) const {
     s.inner = inner.empty() ? std::max({s.outer[0], s.outer[1], s.outer[2]}) : parse_factor(command, "--inner", inner);
   }
   if (adaptive.given()) adaptive.apply(s, command);
-  validate(s, command);
+  validate(s, kCommandLine);
+  // Fixed factors are the same for every patch: if they cull one patch they cull all, and the
+  // run would have nothing to tessellate. Refused by every command alike (docs/patterns.md).
+  if (fixed && d3d11_tri_factors(s.outer, s.inner, s.partitioning).culled)
+    throw InputError(kCommandLine, "--outer",
+                     "'" + outer + "': every patch is culled (an outer factor <= 0 or NaN): nothing to tessellate");
   return s;
 }
 
@@ -262,7 +312,7 @@ void add_unit_pattern_options(CLI::App& cmd, UnitPatternOptions& o, const char* 
 
 std::optional<TessSettings> UnitPatternOptions::settings(const char* command, int L) const {
   if (!given()) {
-    if (!adaptive.camera.empty()) throw InputError(command, "--camera", "needs --adaptive screen");
+    adaptive.check_given_alone();
     return std::nullopt;
   }
   PatternOptions p;

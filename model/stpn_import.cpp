@@ -398,6 +398,14 @@ StImport make_st_mesh(const Mesh& mesh, std::span<const glm::dvec3> corner_norma
 StImport import_st_mesh(const std::filesystem::path& path, const StImportOptions& options,
                         std::vector<std::string>* warnings) {
   io::ImportedMesh imported = io::import_mesh(path);
+  // An ST-mesh given again: its tags are replaced by the ones found here, which is said, not
+  // done silently (it loses whatever was set by hand).
+  const auto acting = std::count_if(imported.mesh.tags.begin(), imported.mesh.tags.end(),
+                                    [](const VertexTags& t) { return !t.neutral(); });
+  if (acting > 0)
+    imported.warnings.push_back(path.string() + ": tags: " + std::to_string(acting) +
+                                " vertices already carry scalar tags; they are replaced by the tags derived from "
+                                "the mesh's creases (the file's own tags are not kept)");
   for (const std::string& w : imported.warnings) {
     if (warnings) warnings->push_back(w);
     else std::fprintf(stderr, "tessim: warning: %s\n", w.c_str());

@@ -26,9 +26,9 @@
 #include "model/pattern.hpp"
 #include "model/tessellate.hpp"
 #include "sim/config.hpp"
+#include "sim/host.hpp"
 #include "sim/params.hpp"
 #include "sim/simulate.hpp"
-#include "sim/version.hpp"
 
 namespace py = pybind11;
 
@@ -195,6 +195,10 @@ struct SimRun {
 };
 
 SimRun simulate(const Mesh& mesh, const sim::UnitConfig& cfg, bool outputs, bool errors) {
+  if (cfg.cpg_tags) {
+    const std::string warning = sim::tags_lost_warning(mesh, cfg.format);
+    if (!warning.empty() && PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) < 0) throw py::error_already_set();
+  }
   sim::SimHooks hooks;
   hooks.measure_errors = errors;
   // The output as the unit produces it (raw fixed-point fields of every accepted vertex) and as
@@ -266,7 +270,7 @@ PYBIND11_MODULE(tessim, m) {
   using namespace tessim;
   using namespace tessim::python;
   m.doc() = "PN-triangle tessellation unit: mesh import, the float64 reference and the cycle model (docs/python.md)";
-  m.attr("__version__") = tool_version();
+  m.attr("__version__") = TESSIM_PACKAGE_VERSION;
 
   // Bad input of every kind (a mesh file, a configuration value, a factor): the message names the
   // file or source, the element and the reason, as the command line's "tessim: error:" lines do.

@@ -7,6 +7,7 @@
 #include "model/error.hpp"
 #include "model/pattern.hpp"
 #include "sim/cpg.hpp"
+#include "sim/json_input.hpp"
 #include "sim/params.hpp"
 
 namespace tessim::sim {
@@ -98,24 +99,7 @@ void apply_json(UnitConfig& cfg, const nlohmann::json& j, const std::string& sou
 }
 
 nlohmann::json parse_config_text(const std::string& text, const std::string& source) {
-  // The key being read, for messages: the parser reports the key event before its value.
-  std::string key;
-  const nlohmann::json::parser_callback_t track = [&key](int depth, nlohmann::json::parse_event_t event,
-                                                         nlohmann::json& parsed) {
-    if (event == nlohmann::json::parse_event_t::key && depth == 1) key = parsed.get<std::string>();
-    return true;
-  };
-  try {
-    return nlohmann::json::parse(text, track);
-  } catch (const nlohmann::json::out_of_range& e) {
-    // nlohmann's text ("[json.exception.out_of_range.406] number overflow parsing '1e400'")
-    // without its prefix.
-    std::string reason = e.what();
-    if (const std::size_t close = reason.find("] "); close != std::string::npos) reason = reason.substr(close + 2);
-    throw InputError(source, key.empty() ? std::string("JSON") : key, reason + " (beyond the range of a double)");
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(source, "JSON", e.what());
-  }
+  return parse_json_text(text, source);
 }
 
 nlohmann::json to_json(const UnitConfig& c) {

@@ -78,6 +78,25 @@ TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scal
   return tri;
 }
 
+std::size_t tags_lost_in_fixed_point(const Mesh& mesh, const NumberFormat& fmt) {
+  std::size_t lost = 0;
+  for (const VertexTags& tags : mesh.tags) {
+    const bool crease_lost = tags.tagged() && quantize(tags.delta, fmt) == FxVec{0, 0, 0};
+    const bool tension_lost = tags.theta != 0.0 && quantize(tags.theta, fmt) == 0;
+    if (crease_lost || tension_lost) ++lost;
+  }
+  return lost;
+}
+
+std::string tags_lost_warning(const Mesh& mesh, const NumberFormat& fmt) {
+  const std::size_t lost = tags_lost_in_fixed_point(mesh, fmt);
+  if (lost == 0) return {};
+  return (mesh.source.empty() ? std::string("mesh") : mesh.source) + ": tags: " + std::to_string(lost) +
+         " vertices carry a crease vector or tension below the fixed-point resolution 2^-" +
+         std::to_string(fmt.coord_frac_bits) +
+         ", which the unit receives as zero: it computes plain PN there (raise coord_frac_bits; docs/stpn.md)";
+}
+
 void set_d3d11_pattern(TriangleFx& tri, const D3D11Factors& f, Partitioning partitioning) {
   switch (partitioning) {
     case Partitioning::fractional_odd: tri.pattern = TriPattern::fractional_odd; break;

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <span>
 #include <vector>
 #include <cstddef>
@@ -48,6 +49,14 @@ glm::dvec3 dequantize(const FxVec& x, const NumberFormat& fmt);
 // vertex when σ exceeds the coordinate range.
 TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
                     const NumberFormat& fmt, int L, bool with_tags = false);
+
+// Vertices whose scalar tags act in float64 but vanish in the fixed-point input: a crease
+// vector Δ that quantizes to zero (every component below half of 2^-F), or a tension θ that
+// does. The unit then computes plain PN there; the caller warns (tessim sim --cpg-tags 1).
+std::size_t tags_lost_in_fixed_point(const Mesh& mesh, const NumberFormat& fmt);
+// The warning about them, "FILE: tags: N vertices ..." (empty when there are none), as the CLI
+// prints it after "tessim: warning: " and the Python module raises it as a UserWarning.
+std::string tags_lost_warning(const Mesh& mesh, const NumberFormat& fmt);
 
 // Gives the triangle the D3D11 pattern with factors `f` as the tessellator processes them
 // (d3d11_tri_factors: clamped, rounded, 16.16); pow2 travels as integer. `f` must not be culled:

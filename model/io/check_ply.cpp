@@ -124,6 +124,10 @@ PlyHeader read_ply_header(const std::string& file, const std::string& data) {
       if (!item) throw header_error("unknown property type '" + std::string(type.value_or("")) + "'");
       property.item = *item;
       property.name = std::string(tokens.next().value_or(""));
+      // Readers disagree on which copy of a repeated property counts (Assimp takes the last
+      // x, the tag reader the first): the file means nothing definite.
+      if (elements.back().find(property.name))
+        throw header_error("property '" + property.name + "' declared twice in element '" + elements.back().name + "'");
       elements.back().properties.push_back(property);
     }
     // Other lines are skipped, as Assimp does (Blender wrote "Created by ..." without "comment").

@@ -143,7 +143,7 @@ TEST(CliTessellate, StandardOutputCarriesTheSameBytesAsAFile) {
   EXPECT_NE(piped.err.find("standard output: 3732 patches"), std::string::npos) << piped.err;
   const RunResult weld = tessim({"tessellate", kWuson.string(), "-o", "-", "--weld"}, d.scratch.path());
   EXPECT_EQ(weld.status, 2);
-  EXPECT_NE(weld.err.find("tessim: error: tessellate: --weld:"), std::string::npos) << weld.err;
+  EXPECT_NE(weld.err.find("tessim: error: command line: --weld:"), std::string::npos) << weld.err;
   EXPECT_TRUE(weld.out.empty());
 }
 

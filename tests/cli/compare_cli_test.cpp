@@ -5,6 +5,7 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -102,6 +103,65 @@ TEST(CompareCli, TwoRunsSideBySideWithRatios) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find(bad.string() + ": statistics: "), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
+}
+
+// The first column of each row of compare's table, in order.
+std::vector<std::string> row_keys(const std::string& out) {
+  std::vector<std::string> keys;
+  std::size_t start = out.find("\nstatistic ");
+  while (start != std::string::npos && start + 1 < out.size()) {
+    const std::size_t end = out.find('\n', start + 1);
+    const std::string line = out.substr(start + 1, end == std::string::npos ? std::string::npos : end - start - 1);
+    if (!line.empty() && line[0] != ' ') keys.push_back(line.substr(0, line.find(' ')));
+    start = end;
+  }
+  if (!keys.empty()) keys.erase(keys.begin());  // the header
+  return keys;
+}
+
+TEST(CompareCli, IntegersExactKeysInNaturalOrderAndFilters) {
+  testing::TempDir dir;
+  const auto a = dir.path() / "a.json", b = dir.path() / "b.json";
+  ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "2", "--stats", a.string()}, dir.path()).status, 0);
+  ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "9", "--stats", b.string()}, dir.path()).status, 0);
+  // A long run's count, stored as a double as the analytic figures are.
+  json jb = read_json(b);
+  jb["analytic"]["run_cycles"] = 1343771.0;
+  { std::ofstream(b) << jb.dump(1); }
+
+  auto r = testing::run_tessim({"compare", a.string(), b.string()}, dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::size_t at = r.out.find("\nanalytic.run_cycles ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string line = r.out.substr(at + 1, r.out.find('\n', at + 1) - at - 1);
+  EXPECT_NE(line.find(" 1343771 "), std::string::npos) << line;
+  EXPECT_EQ(line.find("e+06"), std::string::npos) << line;
+  r = testing::run_tessim({"compare", a.string(), b.string(), "--csv"}, dir.path());
+  EXPECT_NE(r.out.find("\nanalytic.run_cycles,"), std::string::npos);
+  EXPECT_NE(r.out.find(",1343771,"), std::string::npos) << r.out;
+
+  // Histogram bins 0, 1, 2, ..., 9, 10: in natural order, not 0, 1, 10, 2.
+  r = testing::run_tessim({"compare", a.string(), b.string()}, dir.path());
+  const std::vector<std::string> keys = row_keys(r.out);
+  const std::string bins = "workload.vertices_per_patch_log2_histogram.";
+  std::vector<int> order;
+  for (const std::string& k : keys)
+    if (k.rfind(bins, 0) == 0) order.push_back(std::stoi(k.substr(bins.size())));
+  ASSERT_GT(order.size(), 10u) << r.out;
+  for (std::size_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], static_cast<int>(i)) << r.out;
+
+  // --key: only keys with the prefix; --changed: only figures that differ.
+  r = testing::run_tessim({"compare", a.string(), b.string(), "--key", "analytic.", "--key", "gpe."}, dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<std::string> some = row_keys(r.out);
+  ASSERT_FALSE(some.empty()) << r.out;
+  for (const std::string& k : some)
+    EXPECT_TRUE(k.rfind("analytic.", 0) == 0 || k.rfind("gpe.", 0) == 0) << k;
+  r = testing::run_tessim({"compare", a.string(), b.string(), "--changed", "--csv"}, dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("\nschema_version,"), std::string::npos) << r.out;  // the same in both
+  EXPECT_NE(r.out.find("\ncycles,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\nconfig.tess_factor,2,9,"), std::string::npos) << r.out;
 }
 
 }  // namespace

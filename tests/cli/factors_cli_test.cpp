@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"
@@ -89,13 +91,36 @@ TEST(FactorsCli, BadPatternOptionsAreInputErrors) {
   }
 }
 
-TEST(FactorsCli, CulledPatchesWriteAnEmptyMeshAndSaySo) {
+// A factor's text is rounded once, straight to a float: 1.00000005960464478 is just above
+// 1 + 2^-24, the midpoint between 1 and the next float, so it is 1 + 2^-23 (through a double it
+// would round to the midpoint first and then, ties to even, to 1). Integer partitioning rounds
+// 1 + 2^-23 up to 2: three points on that edge, five in all (the D3D11 tessellator's count).
+TEST(FactorsCli, FactorTextIsRoundedOnceToAFloat) {
+  TempDir dir;
+  const auto r = run_tessim({"pattern", "--outer", "1.00000005960464478,1,1", "--inner", "1", "--partitioning",
+                             "integer", "--json"},
+                            dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["outer"][0].get<double>(), 2.0);
+  EXPECT_EQ(j["points"].size(), 5u) << r.out;
+  // Signs, spaces and hexadecimal floats are read as before.
+  const auto hex = run_tessim({"pattern", "--outer", "+2, 0x1p1 ,2e0", "--inner", "1", "--partitioning", "integer",
+                               "--json"},
+                              dir.path());
+  ASSERT_EQ(hex.status, 0) << hex.err;
+  EXPECT_EQ(nlohmann::json::parse(hex.out)["outer_fixed"], nlohmann::json::parse("[131072, 131072, 131072]"));
+}
+
+// Fixed factors cull all patches or none: culling all is an empty run, refused as bad input
+// (every command alike: tests/cli/input_policy_test.cpp).
+TEST(FactorsCli, FactorsThatCullEveryPatchAreRefused) {
   TempDir dir;
   const fs::path out = dir.path() / "c.ply";
   const auto r = run_tessim({"tessellate", kSphere, "--outer", "0,3,3", "-o", out.string()}, dir.path());
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("patches culled"), std::string::npos) << r.out;
-  EXPECT_TRUE(fs::exists(out));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("command line: --outer: '0,3,3': every patch is culled"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

@@ -111,12 +111,12 @@ TEST(StpnImportCli, BadOptionsAndPathsWriteNothing) {
   Dirs d;
   const std::string out = d.at("out.ply").string();
   const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
-      {{"--sigma", "-1"}, {"stpn-import: --sigma: -1 is outside 0..1000"}},
-      {{"--sigma", "nan"}, {"stpn-import: --sigma: 'nan' is not a finite number"}},
-      {{"--sigma", "x"}, {"stpn-import: --sigma: 'x' is not a number"}},
-      {{"--crease-angle", "0"}, {"stpn-import: --crease-angle: 0 is outside (0, 180) degrees"}},
-      {{"--crease-angle", "180"}, {"stpn-import: --crease-angle: 180 is outside (0, 180) degrees"}},
-      {{"--corner-tension", "2"}, {"stpn-import: --corner-tension: 2 is outside -1..1"}},
+      {{"--sigma", "-1"}, {"command line: --sigma: -1 is outside 0..1000"}},
+      {{"--sigma", "nan"}, {"command line: --sigma: 'nan' is not a finite number"}},
+      {{"--sigma", "x"}, {"command line: --sigma: 'x' is not a number"}},
+      {{"--crease-angle", "0"}, {"command line: --crease-angle: 0 is outside (0, 180) degrees"}},
+      {{"--crease-angle", "180"}, {"command line: --crease-angle: 180 is outside (0, 180) degrees"}},
+      {{"--corner-tension", "2"}, {"command line: --corner-tension: 2 is outside -1..1"}},
   };
   for (const auto& [options, expected] : cases) {
     std::vector<std::string> args = {"stpn-import", kBox.string(), "-o", out};
