@@ -371,6 +371,16 @@ void expect_interrupted_wave_leaves_nothing(int sig, const std::string& name) {
             "--wave-window", "0:100000000", static_cast<char*>(nullptr));
     ::_exit(127);
   }
+  // Should an assertion end the test early, the run does not outlive it.
+  struct Reaper {
+    pid_t pid;
+    bool reaped = false;
+    ~Reaper() {
+      if (reaped) return;
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, nullptr, 0);
+    }
+  } reaper{pid};
   // Wait until the recording has grown a little, then interrupt.
   auto recorded = [&] {
     std::uintmax_t bytes = 0;
@@ -382,13 +392,17 @@ void expect_interrupted_wave_leaves_nothing(int sig, const std::string& name) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (recorded() < 100000 && std::chrono::steady_clock::now() < deadline) {
     int status = 0;
-    if (::waitpid(pid, &status, WNOHANG) == pid) FAIL() << "cosim ended before it was interrupted: status " << status;
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      reaper.reaped = true;
+      FAIL() << "cosim ended before it was interrupted: status " << status;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   ASSERT_GE(recorded(), 100000u) << "no recording grew:" << listing(dir.path());
   ASSERT_EQ(::kill(pid, sig), 0);
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  reaper.reaped = true;
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
   EXPECT_EQ(listing(dir.path()), " (empty)");
 }
