@@ -101,8 +101,8 @@ LockstepRun lockstep(const std::vector<sim::TriangleFx>& stream, const CosimOpti
   auto random_reset_now = [&] {
     if (random_fired >= random.count || cycle < reset_due) return false;
     switch (random_fired % 3) {
-      case 1: return dpg_in_inner_ring() || cycle >= reset_due + span;
-      case 2: return cpg_computing() || cycle >= reset_due + span;
+      case 1: return dpg_in_inner_ring() || cycle >= reset_due + 8 * span;
+      case 2: return cpg_computing() || cycle >= reset_due + 8 * span;
       default: return true;
     }
   };

@@ -28,7 +28,8 @@ namespace tessim::cosim {
 // drawn uniformly from the `span` cycles after the previous one and fired at the first cycle from
 // then on at which its target state holds — in turn any cycle, the DPG inside an inner ring of a
 // D3D11 patch (a large pattern half walked), the CPG mid-triangle. A target that does not come
-// within `span` more cycles (a stream without D3D11 patches) gives way to any cycle. The report
+// within 8 `span` more cycles (a stream without D3D11 patches; a CPG blocked behind a large patch)
+// gives way to any cycle. The report
 // counts where the resets landed (CosimReport::resets), so a test can require each kind.
 struct RandomResets {
   int count = 0;

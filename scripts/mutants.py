@@ -9,7 +9,7 @@ stimulus needs, and runs the stimulus until one run fails. It prints a table: mu
 and the seconds spent. It fails if a mutant not declared equivalent survives, if a declared
 equivalent one is caught (its argument is wrong), or if the unmutated copy fails any stimulus.
 
-    /usr/bin/python3 scripts/mutants.py [--work DIR] [--only ID,ID] [--markdown OUT.md]
+    /usr/bin/python3 scripts/mutants.py [--work DIR] [--only ID,ID] [--markdown OUT.md] [--all-stimuli] [--keep-copy]
 
 The work directory (default build/mutants) keeps the copy and its build between runs; a mutant
 then costs one Verilator run of the changed model and the stimulus (about 1-3 minutes).
@@ -24,9 +24,17 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RTL_BUILDS = "n1;n3_lat3"
+RTL_BUILDS = "n1;n3_lat3;n2_w28b20;n1_w20b18"
+# Test binaries built beside tessim for the stimuli that drive the unit below the host (raw factors).
+TEST_TARGETS = ["fsu_cosim_test"]
 N3 = ["--variant", "n3_lat3", "--int", "3", "--int-latency", "3", "--contexts", "6", "--cpg-lanes", "3",
       "--cpg-digit-bits", "5", "--cpg-tags", "1"]
+# The builds with the free parameters away from their defaults (rtl/CMakeLists.txt): FIFO depths 3
+# and 5, W = 28 and 20, B = 20 and 18.
+W28 = ["--variant", "n2_w28b20", "--int", "2", "--tri-fifo-depth", "3", "--vtx-fifo-depth", "5",
+       "--coord-frac-bits", "24", "--bary-bits", "20", "--cpg-tags", "1"]
+W20 = ["--variant", "n1_w20b18", "--int", "1", "--int-latency", "2", "--contexts", "3", "--tri-fifo-depth", "5",
+       "--vtx-fifo-depth", "3", "--coord-int-bits", "2", "--coord-frac-bits", "17", "--bary-bits", "18"]
 WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
 # Stimulus, in order; a mutant is run until the first failure. Together: every normal mode,
 # N = 1 and N = 3, INT latency 3, no / constant / random backpressure, degenerate triangles, a
@@ -52,6 +60,23 @@ STIMULUS = [
                                       "--stall", "0.3", "--gpe-cycles", "2"] + N3),
     ("random D3D11 fractional_odd N=1", ["--random", "40", "--random-max-L", "12", "--partitioning",
                                          "fractional_odd", "--gpe-cycles", "1", "--variant", "n1", "--int", "1"]),
+    # Resets at random cycles, aimed in turn at any cycle, the inner rings of a D3D11 patch (large
+    # factors) and the CPG mid-triangle.
+    ("random resets D3D11 mixed N=3 stall", ["--random", "16", "--random-max-L", "40", "--partitioning", "mixed",
+                                             "--random-resets", "9", "--stall", "0.2", "--gpe-cycles", "2"] + N3),
+    # The free parameters away from their defaults, fast and slow GE (K = 16 is slower than either TE:
+    # the VTX FIFO fills), uniform and D3D11 patterns, saturation.
+    ("W=28 B=20 D3D11 mixed N=2 K=1", ["--random", "30", "--random-max-L", "10", "--partitioning", "mixed",
+                                       "--gpe-cycles", "1"] + W28),
+    ("W=20 B=18 random quadratic N=1 K=1", ["--random", "30", "--random-max-L", "6", "--gpe-cycles", "1"] + W20),
+    ("W=28 B=20 random linear N=2 slow GE", ["--random", "30", "--random-max-L", "6", "--normals", "linear",
+                                             "--gpe-cycles", "16"] + W28),
+    ("W=20 B=18 random linear N=1 slow GE", ["--random", "30", "--random-max-L", "6", "--normals", "linear",
+                                             "--gpe-cycles", "16"] + W20),
+    ("W=20 B=18 saturating reflect N=1", ["--random", "60", "--random-max-L", "3", "--random-extent", "30",
+                                          "--normals", "reflect", "--gpe-cycles", "1"] + W20),
+    # Raw D3D11 factors, every value the interface admits (tests/cosim/fsu_cosim_test.cpp, on n3_lat3).
+    ("FSU raw factors N=3 (fsu_cosim_test)", {"test": "fsu_cosim_test", "filter": "FsuRawFactors.*"}),
 ]
 
 
@@ -73,7 +98,7 @@ def copy_tree(dst):
 
 def build(src, bld, log):
     if not os.path.exists(os.path.join(bld, "CMakeCache.txt")):
-        args = ["cmake", "-S", src, "-B", bld, "-DCMAKE_BUILD_TYPE=Release", "-DTESSIM_BUILD_TESTS=OFF",
+        args = ["cmake", "-S", src, "-B", bld, "-DCMAKE_BUILD_TYPE=Release", "-DTESSIM_BUILD_TESTS=ON",
                 "-DTESSIM_BUILD_BENCH=OFF", "-DTESSIM_RTL_VARIANTS=" + RTL_BUILDS]
         if shutil.which("ccache"):
             args.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
@@ -81,7 +106,7 @@ def build(src, bld, log):
         log.write(r.stdout)
         if r.returncode:
             return False
-    r = run(["cmake", "--build", bld, "-j2", "--target", "tessim"])
+    r = run(["cmake", "--build", bld, "-j2", "--target", "tessim"] + TEST_TARGETS)
     log.write(r.stdout)
     return r.returncode == 0
 
@@ -124,13 +149,21 @@ def restore(src, mutant):
 
 
 def stimulate(tessim, log, stop_at_first=True):
-    """Runs the stimulus; returns (index, output) of the first failure or (None, None)."""
+    """Runs the stimulus; returns [(index, output)] of the failures (only the first one when
+    stop_at_first), empty when every stimulus passes."""
+    failures = []
     for i, (name, args) in enumerate(STIMULUS):
-        r = run([tessim, "cosim"] + args, timeout=1800)
-        log.write("$ tessim cosim %s\n%s\n" % (" ".join(args), r.stdout))
+        if isinstance(args, dict):  # a test binary of the same build
+            cmd = [os.path.join(os.path.dirname(tessim), args["test"]), "--gtest_filter=" + args["filter"]]
+        else:
+            cmd = [tessim, "cosim"] + args
+        r = run(cmd, timeout=1800)
+        log.write("$ %s\n%s\n" % (" ".join(cmd), r.stdout))
         if r.returncode != 0:
-            return i, r.stdout
-    return None, None
+            failures.append((i, r.stdout))
+            if stop_at_first:
+                break
+    return failures
 
 
 def main():
@@ -138,6 +171,10 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "mutants"), help="work directory")
     ap.add_argument("--only", default="", help="comma-separated mutant ids")
     ap.add_argument("--markdown", default="", help="also write the table as Markdown to this file")
+    ap.add_argument("--keep-copy", action="store_true",
+                    help="use the copy in the work directory as it stands (do not refresh it from the working tree)")
+    ap.add_argument("--all-stimuli", action="store_true",
+                    help="run every stimulus on each mutant and list all that catch it (default: stop at the first)")
     args = ap.parse_args()
 
     table = json.load(open(os.path.join(ROOT, "scripts", "mutants", "mutants.json")))["mutants"]
@@ -150,15 +187,16 @@ def main():
     src, bld = os.path.join(args.work, "src"), os.path.join(args.work, "build")
     os.makedirs(src, exist_ok=True)
     log = open(os.path.join(args.work, "mutants.log"), "w")
-    copy_tree(src)
+    if not args.keep_copy:
+        copy_tree(src)
     tessim = os.path.join(bld, "bin", "tessim")
 
     t0 = time.time()
     if not build(src, bld, log):
         raise SystemExit("mutants: the unmutated copy does not build (see %s)" % log.name)
-    failed, _ = stimulate(tessim, log)
-    if failed is not None:
-        raise SystemExit("mutants: the unmutated copy fails '%s' (see %s)" % (STIMULUS[failed][0], log.name))
+    failed = stimulate(tessim, log)
+    if failed:
+        raise SystemExit("mutants: the unmutated copy fails '%s' (see %s)" % (STIMULUS[failed[0][0]][0], log.name))
     print("unmutated: builds and passes all %d stimuli (%.0f s)" % (len(STIMULUS), time.time() - t0), flush=True)
 
     rows, problems = [], []
@@ -169,12 +207,14 @@ def main():
             if not build(src, bld, log):
                 caught, stim, cycle = "build failed", "-", None
             else:
-                idx, out = stimulate(tessim, log)
-                if idx is None:
+                failures = stimulate(tessim, log, stop_at_first=not args.all_stimuli)
+                if not failures:
                     caught, stim, cycle = "SURVIVED", "-", None
                 else:
-                    caught, cycle = classify(out)
-                    stim = STIMULUS[idx][0]
+                    caught, cycle = classify(failures[0][1])
+                    stim = STIMULUS[failures[0][0]][0]
+                    if args.all_stimuli:  # every stimulus that catches it, with its first divergent cycle
+                        stim = "; ".join("%s (%s)" % (STIMULUS[i][0], classify(out)[1]) for i, out in failures)
         finally:
             restore(src, m)
         seconds = time.time() - t

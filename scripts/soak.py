@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Soak test of the lock-step co-simulation: many seeds, every fault-free RTL build (N = 1..4 with
-the sequential CPG, and the CPG variants), every normal mode the unit implements, factors 1..16, random and constant geometry-engine stalls, real meshes
-(uniform and adaptive factors) and random triangle streams (with degenerate ones), on every core.
+the sequential CPG, the CPG variants, other FIFO depths and widths), every normal mode the unit implements, factors 1..16, random and constant geometry-engine stalls, real meshes
+(uniform and adaptive factors) and random triangle streams (with degenerate ones; half of them with
+D3D11 patterns and resets at random cycles), on every core.
 Prints each job as it ends and the totals: vertices, cycles, seeds, wall time, mismatches.
 
     scripts/soak.py [--tessim build/bin/tessim] [--vertices 10000000] [--jobs N] [--seed S]
@@ -34,6 +35,11 @@ BUILDS = [
     ("n3_lat3", ["--int-blocks", "3", "--int-latency", "3", "--te-contexts", "6", "--cpg-lanes", "3",
                  "--cpg-digit-bits", "5", "--cpg-tags", "1"]),
     ("n4_l3r24", ["--int-blocks", "4", "--cpg-lanes", "3", "--cpg-digit-bits", "24", "--cpg-tags", "1"]),
+    # The free parameters away from their defaults: FIFO depths 3 and 5, W = 28 and 20, B = 20 and 18.
+    ("n2_w28b20", ["--int-blocks", "2", "--tri-fifo-depth", "3", "--vtx-fifo-depth", "5", "--coord-frac-bits", "24",
+                   "--bary-bits", "20", "--cpg-tags", "1"]),
+    ("n1_w20b18", ["--int-blocks", "1", "--int-latency", "2", "--te-contexts", "3", "--tri-fifo-depth", "5",
+                   "--vtx-fifo-depth", "3", "--coord-int-bits", "2", "--coord-frac-bits", "17", "--bary-bits", "18"]),
 ]
 
 
@@ -48,6 +54,9 @@ def job_args(rng, index):
     if kind == 0:
         args += ["--random", str(rng.choice([200, 500, 1000])), "--random-max-L", "16"]
         what = "random triangles"
+        if rng.random() < 0.5:  # D3D11 patterns, with resets at random cycles (inside them too)
+            args += ["--partitioning", "mixed", "--random-resets", str(rng.choice([3, 6, 9]))]
+            what = "random D3D11 triangles, resets"
     elif kind == 1:
         mesh = rng.choice(MESHES)
         args += [str(mesh), "-L", str(rng.randint(1, 16))]

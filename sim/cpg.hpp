@@ -53,7 +53,8 @@ std::string describe_pattern(const TriangleFx& tri);
 // Vertices the unit produces for the triangle: its pattern's points.
 int patch_vertex_count(const TriangleFx& tri);
 // The reason the unit cannot take the triangle's pattern and factors, empty if it can: L outside
-// 1..64, a D3D11 factor outside the partitioning's range or not rounded as it requires.
+// 1..64, a D3D11 factor outside the partitioning's range or not rounded as it requires, a
+// fractional_odd inner factor of exactly 1 beside a larger outer one (docs/rtl.md, FSU).
 std::string tri_pattern_problem(const TriangleFx& tri);
 
 // Contents of one control-point buffer (net layout of model/pn.hpp, net_index()).

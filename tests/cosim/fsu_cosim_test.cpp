@@ -1,0 +1,131 @@
+// The factor setup unit on raw factors (docs/rtl.md, FSU): the host sends factors processed by
+// d3d11_tri_factors, which never produces some of what the unit's interface admitted — a
+// fractional_odd inner factor of exactly 1 beside larger outer factors (the host raises it to
+// 1 + 2^-16). Driven with it, RTL and cycle model parted at its first inner-ring point (the model
+// placed it outside the domain): the interface now refuses it. Everything else the interface
+// admits (sim::tri_pattern_problem: each factor in its partitioning's range, integers for
+// integer) the RTL must treat as the cycle model does, so this drives it in lock-step with every
+// admitted integer, and fractional factors at and next to every integer and at every half, in
+// each factor slot.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cosim/cosim.hpp"
+#include "model/error.hpp"
+#include "rtl/verilated/rtl_unit.hpp"
+#include "sim/cpg.hpp"
+#include "sim/unit.hpp"
+
+namespace tessim::cosim {
+namespace {
+
+// Every factor value the interface admits at the integers, and the fractional ones around them:
+// k, k + 2^-16, k + 1/2 and k + 1 - 2^-16 (integer partitioning: the integers alone).
+std::vector<Fixed16> admitted_values(sim::TriPattern p) {
+  const int lo = p == sim::TriPattern::fractional_even ? 2 : 1;
+  const int hi = p == sim::TriPattern::fractional_odd ? 63 : 64;
+  std::vector<Fixed16> v;
+  for (int k = lo; k <= hi; ++k) {
+    const Fixed16 f = k * kFixed16One;
+    v.push_back(f);
+    if (p == sim::TriPattern::integer || k == hi) continue;
+    v.push_back(f + 1);
+    v.push_back(f + kFixed16One / 2);
+    v.push_back(f + kFixed16One - 1);
+  }
+  return v;
+}
+
+sim::TriangleFx with_factors(sim::TriangleFx t, sim::TriPattern p, Fixed16 o0, Fixed16 o1, Fixed16 o2, Fixed16 inner) {
+  t.pattern = p;
+  t.factors = {o0, o1, o2, inner};
+  return t;
+}
+
+class FsuRawFactors : public ::testing::TestWithParam<sim::TriPattern> {};
+
+TEST_P(FsuRawFactors, EveryAdmittedFactorAgrees) {
+  const sim::TriPattern p = GetParam();
+  const std::vector<Fixed16> values = admitted_values(p);
+  const std::size_t n = values.size();
+  CosimOptions o;
+  o.variant = "n3_lat3";  // three CPG lanes: a short CPG (and a build the mutation campaign has)
+  static_cast<sim::HardwareConfig&>(o.unit) = rtl::make_rtl_unit(o.variant)->config();
+  o.unit.normals = NormalMode::Linear;  // the shortest CPG pass: the patterns are the subject
+  o.unit.gpe_cycles = 1;
+  o.seed = 3;
+  const std::vector<sim::TriangleFx> shapes = random_triangles(16, o.seed, o.unit.format, 1, 0.0);
+  std::vector<sim::TriangleFx> stream;
+  int refused = 0;  // fractional_odd, inner exactly 1 beside a larger outer factor
+  auto add = [&](Fixed16 o0, Fixed16 o1, Fixed16 o2, Fixed16 inner) {
+    sim::TriangleFx t = with_factors(shapes[stream.size() % shapes.size()], p, o0, o1, o2, inner);
+    t.id = static_cast<std::uint32_t>(stream.size());
+    if (p == sim::TriPattern::fractional_odd && inner == kFixed16One && (o0 > inner || o1 > inner || o2 > inner)) {
+      EXPECT_NE(sim::tri_pattern_problem(t).find("inner factor 0x10000 (16.16) is 1 beside an outer factor above 1"),
+                std::string::npos)
+          << "the interface refuses it";
+      ++refused;
+      return;
+    }
+    ASSERT_EQ(sim::tri_pattern_problem(t), "") << "the interface admits it";
+    stream.push_back(t);
+  };
+  // Each value as the inner factor, beside outer factors drawn across the range; each value in
+  // each outer slot beside the smallest inner factor (small patches, mostly the outer ring).
+  for (std::size_t i = 0; i < n; ++i)
+    add(values[(i * 7) % n], values[(i * 13 + 5) % n], values[(i * 29 + 11) % n], values[i]);
+  for (std::size_t i = 0; i < n; ++i)
+    add(i % 3 == 0 ? values[i] : values[(i * 11) % n], i % 3 == 1 ? values[i] : values[(i * 5 + 3) % n],
+        i % 3 == 2 ? values[i] : values[(i * 17 + 1) % n], values[0]);
+  // The smallest inner factor beside the largest and the smallest outer ones, and all at the bottom.
+  add(values[n - 1], values[n - 1], values[n - 1], values[0]);
+  add(values[0], values[0], values[n - 1], values[0]);
+  add(values[0], values[0], values[0], values[0]);
+  if (p == sim::TriPattern::fractional_odd) EXPECT_GT(refused, 100);
+  else EXPECT_EQ(refused, 0);
+  const CosimReport r = run_cosim(stream, o);
+  EXPECT_TRUE(r.passed) << format_report(r, o);
+  std::uint64_t vertices = 0;
+  for (const sim::TriangleFx& t : stream) vertices += static_cast<std::uint64_t>(sim::patch_vertex_count(t));
+  EXPECT_EQ(r.vertices, vertices);
+  EXPECT_EQ(r.triangles, stream.size());
+}
+
+// The descriptor the contract excludes is bad input to the co-simulation and to the cycle model,
+// refused before the run; the single triangle (all four factors 1) stays.
+TEST(FsuRawFactorsContract, OddInnerOneBesideLargerOuterIsRefused) {
+  CosimOptions o;
+  o.variant = "n3_lat3";
+  static_cast<sim::HardwareConfig&>(o.unit) = rtl::make_rtl_unit(o.variant)->config();
+  std::vector<sim::TriangleFx> stream = random_triangles(2, 1, o.unit.format, 1, 0.0);
+  stream[0] = with_factors(stream[0], sim::TriPattern::fractional_odd, kFixed16One, kFixed16One, kFixed16One, kFixed16One);
+  stream[1] = with_factors(stream[1], sim::TriPattern::fractional_odd, kFixed16One, 3 * kFixed16One + 1, kFixed16One,
+                           kFixed16One);
+  try {
+    run_cosim(stream, o);
+    ADD_FAILURE() << "the stream must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 1"), std::string::npos) << e.what();
+  }
+  stream.pop_back();
+  EXPECT_TRUE(run_cosim(stream, o).passed) << "the single triangle is admitted";
+  sim::Unit unit(o.unit);
+  sim::UnitInputs in;
+  in.tri_valid = true;
+  in.tri = with_factors(stream[0], sim::TriPattern::fractional_odd, 2 * kFixed16One, kFixed16One, kFixed16One,
+                        kFixed16One);
+  EXPECT_THROW(unit.tick(in), std::invalid_argument);
+}
+
+INSTANTIATE_TEST_SUITE_P(Partitionings, FsuRawFactors,
+                         ::testing::Values(sim::TriPattern::integer, sim::TriPattern::fractional_odd,
+                                           sim::TriPattern::fractional_even),
+                         [](const auto& info) {
+                           return std::string(partitioning_name(sim::tri_partitioning(info.param)));
+                         });
+
+}  // namespace
+}  // namespace tessim::cosim
