@@ -34,6 +34,28 @@ namespace py = pybind11;
 
 namespace tessim::python {
 
+// A file name is any bytes on Linux, and messages quote file names: text for Python that never
+// fails to decode. A path as os.fsdecode gives it (os.fsencode gives the bytes back); a message
+// with bytes that are not UTF-8 shown as \xHH.
+py::str path_text(const std::string& path) {
+  PyObject* text = PyUnicode_DecodeFSDefaultAndSize(path.data(), static_cast<Py_ssize_t>(path.size()));
+  if (!text) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(text);
+}
+
+py::str message_text(const std::string& message) {
+  PyObject* text = PyUnicode_DecodeUTF8(message.data(), static_cast<Py_ssize_t>(message.size()), "backslashreplace");
+  if (!text) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(text);
+}
+
+void warn(const std::string& message) {
+  if (PyErr_WarnFormat(PyExc_UserWarning, 1, "%U", message_text(message).ptr()) < 0) throw py::error_already_set();
+}
+
+// tessim.InputError, set by the module's initialisation.
+PyObject* input_error_type = nullptr;
+
 namespace {
 
 // glm vectors are read as rows of plain scalars.
@@ -197,7 +219,7 @@ struct SimRun {
 SimRun simulate(const Mesh& mesh, const sim::UnitConfig& cfg, bool outputs, bool errors) {
   if (cfg.cpg_tags) {
     const std::string warning = sim::tags_lost_warning(mesh, cfg.format);
-    if (!warning.empty() && PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) < 0) throw py::error_already_set();
+    if (!warning.empty()) warn(warning);
   }
   sim::SimHooks hooks;
   hooks.measure_errors = errors;
@@ -274,10 +296,19 @@ PYBIND11_MODULE(tessim, m) {
 
   // Bad input of every kind (a mesh file, a configuration value, a factor): the message names the
   // file or source, the element and the reason, as the command line's "tessim: error:" lines do.
-  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  // The message as text even when it quotes a file name that is not UTF-8.
+  input_error_type = py::register_exception<InputError>(m, "InputError", PyExc_ValueError).ptr();
+  py::register_exception_translator([](std::exception_ptr p) {
+    if (!p) return;
+    try {
+      std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      PyErr_SetObject(input_error_type, message_text(e.what()).ptr());
+    }
+  });
 
   py::class_<Mesh>(m, "Mesh", "A welded triangle mesh with one unit normal per vertex (load_mesh)")
-      .def_property_readonly("source", [](const Mesh& mesh) { return mesh.source; })
+      .def_property_readonly("source", [](const Mesh& mesh) { return path_text(mesh.source); })
       .def_property_readonly(
           "positions", [](py::object self) { return view<double>(self.cast<const Mesh&>().positions, self); },
           "V x 3 float64, read-only view")
@@ -292,7 +323,7 @@ PYBIND11_MODULE(tessim, m) {
       .def_property_readonly("vertex_count", &Mesh::vertex_count)
       .def_property_readonly("triangle_count", &Mesh::triangle_count)
       .def("__repr__", [](const Mesh& mesh) {
-        return "<tessim.Mesh " + py::repr(py::str(mesh.source)).cast<std::string>() + ": " +
+        return "<tessim.Mesh " + py::repr(path_text(mesh.source)).cast<std::string>() + ": " +
                std::to_string(mesh.vertex_count()) + " vertices, " + std::to_string(mesh.triangle_count()) +
                " triangles>";
       });
@@ -306,8 +337,7 @@ PYBIND11_MODULE(tessim, m) {
           py::gil_scoped_release unlocked;
           mesh = load_mesh(path, &warnings);
         }
-        for (const std::string& w : warnings)
-          if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) < 0) throw py::error_already_set();
+        for (const std::string& w : warnings) warn(w);
         return mesh;
       },
       py::arg("path"),

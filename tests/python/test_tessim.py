@@ -66,6 +66,29 @@ class MeshTest(unittest.TestCase):
     def test_path_like(self):
         self.assertEqual(tessim.load_mesh(pathlib.Path(MESH)).triangle_count, self.mesh.triangle_count)
 
+    def test_path_that_is_not_utf8(self):
+        # A Linux file name is any bytes: opened as the command line opens it, from bytes or from
+        # the str os.fsdecode makes of them; its source and messages never fail to decode.
+        with tempfile.TemporaryDirectory() as tmp:
+            raw = os.fsencode(tmp) + b"/c\xe9be.off"
+            with open("/usr/share/assimp/models/OFF/Cube.off", "rb") as src, open(raw, "wb") as dst:
+                dst.write(src.read())
+            for path in (raw, os.fsdecode(raw)):
+                mesh = tessim.load_mesh(path)
+                self.assertEqual(mesh.triangle_count, 12)
+                self.assertEqual(os.fsencode(mesh.source), raw)
+                self.assertIn("c\\udce9be.off", repr(mesh))
+            missing = os.fsencode(tmp) + b"/miss\xe9.off"
+            with self.assertRaises(tessim.InputError) as caught:
+                tessim.load_mesh(missing)
+            self.assertIn(tmp + "/miss\\xe9.off: file: does not exist", str(caught.exception))
+
+    def test_version_is_the_package_version(self):
+        # The version `tessim --version` prints ("tessim 0.1.0 (git describe)"), not a git hash.
+        out = subprocess.run([TESSIM, "--version"], capture_output=True, text=True, check=True).stdout
+        self.assertEqual(out.split()[1], tessim.__version__)
+        self.assertRegex(tessim.__version__, r"^\d+\.\d+\.\d+$")
+
 
 class TessellateTest(unittest.TestCase):
     @classmethod
@@ -176,6 +199,23 @@ class SimulateTest(unittest.TestCase):
                                  capture_output=True, text=True).stdout
             with open(stats_path) as f:
                 return out, json.load(f)
+
+    def test_tags_below_the_fixed_point_resolution_warn(self):
+        # A crease vector of 1e-7 reaches the unit as zero: said with the count, as `tessim sim` does.
+        ply = ("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+               "property double dx\nproperty double dy\nproperty double dz\nproperty double sigma\n"
+               "property double theta\nproperty double beta\nelement face 4\n"
+               "property list uchar int vertex_indices\nend_header\n"
+               "0 0 1 0 0 1e-7 0 0 0\n1 0 0 0 0 0 0 0 0\n0 1 0 0 0 0 0 0 0\n-1 -1 -1 0 0 0 0 0 0\n"
+               "3 0 1 2\n3 0 2 3\n3 0 3 1\n3 1 3 2\n")
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "tiny.ply")
+            with open(path, "w") as f:
+                f.write(ply)
+            mesh = tessim.load_mesh(path)
+            with self.assertWarnsRegex(UserWarning, r"tiny.ply: tags: 1 vertices carry a crease vector or tension "
+                                                    r"below the fixed-point resolution"):
+                tessim.simulate(mesh, cpg_tags=1, outputs=False)
 
     def test_cycles_and_statistics_match_the_cli(self):
         runs = [
