@@ -482,8 +482,9 @@ void register_render(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--config", args->config,
                   "Unit configuration file (number format) for the error colour modes (default: defaults)");
-  cmd->add_option("--caption", args->caption, "Caption text (default: mesh, pattern, normals and panel labels)");
-  cmd->add_flag("--no-caption", args->no_caption, "No caption above the picture");
+  CLI::Option* caption =
+      cmd->add_option("--caption", args->caption, "Caption text (default: mesh, pattern, normals and panel labels)");
+  cmd->add_flag("--no-caption", args->no_caption, "No caption above the picture")->excludes(caption);
   cmd->add_flag("--wireframe", args->wireframe,
                 "Overlay triangle edges (input triangles dark, their refinement light)");
   cmd->add_option("--size", args->size, "Image size WxH per panel (1..8192 each)")->capture_default_str();

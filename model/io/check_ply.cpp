@@ -100,6 +100,11 @@ PlyHeader read_ply_header(const std::string& file, const std::string& data) {
       else if (kind == "binary_little_endian") format = PlyFormat::BinaryLittle;
       else if (kind == "binary_big_endian") format = PlyFormat::BinaryBig;
       else throw header_error("unknown format '" + std::string(kind.value_or("")) + "'");
+      // PLY has one version; a file claiming another may mean anything by its body.
+      const auto version = tokens.next();
+      if (version != "1.0")
+        throw header_error("format version '" + std::string(version.value_or("")) + "' (only 1.0 exists)");
+      if (tokens.next()) throw header_error("unexpected text after the format version");
     } else if (*keyword == "element") {
       const auto name = tokens.next();
       const auto count_token = tokens.next();

@@ -148,6 +148,13 @@ TEST(LoadMesh, RejectsMalformedFilesNamingFileElementAndReason) {
                       {"two_headers.ply", "PLY header line 11", "a second format line"}));
   EXPECT_TRUE(rejects(dir.write("two_vertex_elements.ply", header + "element vertex 3\n" + body),
                       {"two_vertex_elements.ply", "PLY header line 9", "element 'vertex' declared twice"}));
+  // PLY has only version 1.0 (Assimp reads any version as if it were 1.0).
+  std::string future = header + body;
+  future.replace(future.find("ascii 1.0"), 9, "ascii 9.9");
+  EXPECT_TRUE(rejects(dir.write("version.ply", future), {"version.ply", "PLY header line 2", "format version '9.9'"}));
+  std::string versionless = header + body;
+  versionless.replace(versionless.find("ascii 1.0"), 9, "ascii");
+  EXPECT_TRUE(rejects(dir.write("versionless.ply", versionless), {"versionless.ply", "format version ''"}));
 
   // PLY: truncated binary, truncated header, out-of-range face, non-numbers, Inf.
   const std::string ply = square_binary_ply();

@@ -15,6 +15,8 @@
 #include <tuple>
 #include <vector>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "model/error.hpp"
@@ -563,6 +565,33 @@ TEST(StpnImport, ACreaseRunningIntoAnUntaggedVertexWouldCrack) {
   const EdgeComparison c = compare_shared_edges(broken, 4);
   EXPECT_GT(c.differing, 0u);
   EXPECT_GT(c.worst, 1e-6);
+}
+
+}  // namespace
+}  // namespace tessim
+
+namespace tessim {
+namespace {
+
+// stpn-import replaces a tagged file's tags, but a file whose tags break the format's rules is
+// still refused, as every other command refuses it (docs/stpn.md).
+TEST(StpnImport, RefusesAFileWhoseOwnTagsBreakTheRules) {
+  const fs::path file = fs::temp_directory_path() / ("stpn_import_bad_tags_" + std::to_string(::getpid()) + ".ply");
+  {
+    std::ofstream out(file);
+    out << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+           "property float dx\nproperty float dy\nproperty float dz\nproperty float sigma\nproperty float theta\n"
+           "property float beta\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+           "0 0 0 0.5 0 0 1 0 0\n1 0 0 0.5 0 0 1 0 0\n0 1 0 0.5 0 0 1 0 0\n3 0 1 2\n";
+  }
+  try {
+    (void)import_st_mesh(file, {});
+    ADD_FAILURE() << "a triangle with three tagged vertices was imported";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("a triangle may have at most 2"), std::string::npos) << e.what();
+  }
+  fs::remove(file);
 }
 
 }  // namespace
