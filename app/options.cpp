@@ -49,7 +49,7 @@ void warn_tags_ignored(const Mesh& mesh, const char* command) {
 
 void warn_tags_lost(const Mesh& mesh, const sim::NumberFormat& format) {
   const std::string warning = sim::tags_lost_warning(mesh, format);
-  if (!warning.empty()) std::fprintf(stderr, "tessim: warning: %s\n", warning.c_str());
+  if (!warning.empty()) std::fprintf(stderr, "tessim: warning: %s\n", printable_text(warning, 960).c_str());
 }
 
 void check_output_paths(const std::vector<OutputPath>& outputs) {
@@ -229,7 +229,7 @@ void AdaptiveOptions::check_given_alone() const {
     throw InputError(kCommandLine, "--pixels-per-segment", "needs --adaptive screen");
 }
 
-void AdaptiveOptions::apply(TessSettings& s, const char* command) const {
+void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
   if (adaptive != "screen") throw InputError(kCommandLine, "--adaptive", "'" + adaptive + "' is not 'screen'");
   if (camera.empty()) throw InputError(kCommandLine, "--camera", "--adaptive screen needs --camera eye=x,y,z");
   s.kind = PatternKind::D3D11;

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/error.hpp"
 #include "model/io/import.hpp"
 #include "model/mesh_build.hpp"
 #include "model/st_mesh.hpp"
@@ -19,7 +20,7 @@ Mesh load_mesh(const std::filesystem::path& path, std::vector<std::string>* warn
   const io::ImportedMesh imported = io::import_mesh(path);
   for (const std::string& w : imported.warnings) {
     if (warnings) warnings->push_back(w);
-    else std::fprintf(stderr, "tessim: warning: %s\n", w.c_str());
+    else std::fprintf(stderr, "tessim: warning: %s\n", printable_text(w, 960).c_str());
   }
   std::vector<std::uint32_t> first_copies;
   Mesh mesh = weld(imported.mesh, [&](std::uint32_t v) { return imported.vertex_name(v); }, &first_copies);

@@ -249,6 +249,14 @@ TEST(BadInputMessages, ControlBytesAreEscaped) {
   expect_input_error(r, {"ctl.off: ", "\\x10"});
   EXPECT_EQ(r.err.find('\x10'), std::string::npos) << r.err;
   EXPECT_TRUE(d.work.empty()) << entries_text(d.work);
+  // Warnings too: a file name with a control byte in it.
+  const fs::path named = d.scratch.write("line\x01.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n");
+  const TessimRun w = run_tessim({"tessellate", named.string(), "-o", d.at("lines.ply").string()}, d.scratch.path());
+  EXPECT_EQ(w.status, 0) << w.err;
+  EXPECT_NE(w.err.find("tessim: warning: " + d.scratch.path().string() + "/line\\x01.obj: "), std::string::npos)
+      << w.err;
+  EXPECT_EQ(w.err.find('\x01'), std::string::npos) << w.err;
+  fs::remove(d.at("lines.ply"));
   // A newline in an option value cannot start a second, forged line.
   expect_input_error(run_tessim({"tessellate", kCube.string(), "-o", d.at("out.ply").string(), "--outer",
                                  "1,2\ntessim: error: forged,3"},
