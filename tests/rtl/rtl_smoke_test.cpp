@@ -237,7 +237,7 @@ constexpr std::array<NormalMode, 3> kModes{NormalMode::Quadratic, NormalMode::Re
 TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   const std::vector<std::string> names = rtl::rtl_variants();
   EXPECT_EQ(names, (std::vector<std::string>{"n1", "n2", "n3", "n4", "n2_verif", "n3_lat3", "n1_r4", "n2_l3r8",
-                                             "n4_l3r24", "n2_bug1", "n2_bug2"}));
+                                             "n4_l3r24", "n2_w28b20", "n1_w20b18", "n2_bug1", "n2_bug2"}));
   EXPECT_THROW(rtl::make_rtl_unit("n9"), std::invalid_argument);
   auto unit = rtl::make_rtl_unit("n3");
   EXPECT_EQ(unit->int_blocks(), 3);
@@ -254,6 +254,19 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   EXPECT_EQ(rtl::make_rtl_unit("n1_r4")->config().cpg, (sim::CpgVariant{1, 4}));
   EXPECT_EQ(rtl::make_rtl_unit("n2_l3r8")->config().cpg, (sim::CpgVariant{3, 8}));
   EXPECT_EQ(rtl::make_rtl_unit("n4_l3r24")->config().cpg, (sim::CpgVariant{3, 24}));
+  // The free parameters away from their defaults: FIFO depths and widths.
+  const sim::HardwareConfig w28 = rtl::make_rtl_unit("n2_w28b20")->config();
+  EXPECT_EQ(w28.tri_fifo_depth, 3);
+  EXPECT_EQ(w28.vtx_fifo_depth, 5);
+  EXPECT_EQ(w28.format.coord_width(), 28);
+  EXPECT_EQ(w28.format.bary_bits, 20);
+  const sim::HardwareConfig w20 = rtl::make_rtl_unit("n1_w20b18")->config();
+  EXPECT_EQ(w20.tri_fifo_depth, 5);
+  EXPECT_EQ(w20.vtx_fifo_depth, 3);
+  EXPECT_EQ(w20.format.coord_width(), 20);
+  EXPECT_EQ(w20.format.bary_bits, 18);
+  EXPECT_EQ(w20.int_latency, 2);
+  EXPECT_EQ(w20.te_contexts, 3);
   // A configuration finds the build that implements its hardware; fault builds are never chosen.
   sim::HardwareConfig hw;
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), "n2");
