@@ -56,7 +56,7 @@ void expect_input_error(const TessimRun& r, const std::vector<std::string>& expe
 // Outputs: every path is checked and opened before anything is computed or moved into place.
 
 TEST(BadOutput, UnwritableStatsLeavesNoMeshAndNoTrace) {
-  if (!fs::exists(kCube)) GTEST_SKIP() << kCube << " not installed (assimp-testmodels)";
+  if (!fs::exists(kCube)) FAIL() << kCube << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   const TessimRun r = run_tessim({"sim", kCube.string(), "-o", d.at("out.ply").string(), "--trace",
                                   d.at("trace.json").string(), "--stats", d.at("missing/stats.json").string()},
@@ -66,7 +66,7 @@ TEST(BadOutput, UnwritableStatsLeavesNoMeshAndNoTrace) {
 }
 
 TEST(BadOutput, StatsPathThatIsADirectory) {
-  if (!fs::exists(kCube)) GTEST_SKIP() << kCube << " not installed (assimp-testmodels)";
+  if (!fs::exists(kCube)) FAIL() << kCube << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   fs::create_directory(d.at("stats.json"));
   const TessimRun r = run_tessim({"sim", kCube.string(), "-o", d.at("out.ply").string(), "--stats",
@@ -77,7 +77,7 @@ TEST(BadOutput, StatsPathThatIsADirectory) {
 }
 
 TEST(BadOutput, TheSamePathForTwoOutputs) {
-  if (!fs::exists(kCube)) GTEST_SKIP() << kCube << " not installed (assimp-testmodels)";
+  if (!fs::exists(kCube)) FAIL() << kCube << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   const TessimRun r = run_tessim({"sim", kCube.string(), "--trace", d.at("a.json").string(), "--stats",
                                   d.work.path().string() + "/./a.json"},
@@ -87,7 +87,7 @@ TEST(BadOutput, TheSamePathForTwoOutputs) {
 }
 
 TEST(BadOutput, TessellateAndRenderIntoADirectory) {
-  if (!fs::exists(kCube)) GTEST_SKIP() << kCube << " not installed (assimp-testmodels)";
+  if (!fs::exists(kCube)) FAIL() << kCube << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   fs::create_directory(d.at("out.ply"));
   fs::create_directory(d.at("out.png"));
@@ -108,7 +108,7 @@ TEST(BadOutput, TessellateAndRenderIntoADirectory) {
 // Configuration files.
 
 TEST(BadConfig, NumberBeyondJsonNamesFileAndKey) {
-  if (!fs::exists(kCube)) GTEST_SKIP() << kCube << " not installed (assimp-testmodels)";
+  if (!fs::exists(kCube)) FAIL() << kCube << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   const fs::path config = d.scratch.write("big.json", "{\"tess_factor\": 4, \"int_blocks\": 1e400}\n");
   const TessimRun r = run_tessim({"sim", kCube.string(), "--config", config.string(), "--stats",
@@ -119,7 +119,7 @@ TEST(BadConfig, NumberBeyondJsonNamesFileAndKey) {
 }
 
 TEST(BadConfig, DirectoryAndMissingFile) {
-  if (!fs::exists(kCube)) GTEST_SKIP() << kCube << " not installed (assimp-testmodels)";
+  if (!fs::exists(kCube)) FAIL() << kCube << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   expect_input_error(run_tessim({"sim", kCube.string(), "--config", d.work.path().string()}, d.scratch.path()),
                      {d.work.path().string() + ": file: is a directory"});
@@ -173,7 +173,7 @@ TEST(BadCommandLine, CosimRanges) {
 #endif
 
 TEST(BadCommandLine, IntegersAreDecimal) {
-  if (!fs::exists(kCube)) GTEST_SKIP() << kCube << " not installed (assimp-testmodels)";
+  if (!fs::exists(kCube)) FAIL() << kCube << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   const TessimRun r = run_tessim({"tessellate", kCube.string(), "-L", "010", "-o", d.at("c.obj").string()},
                                  d.scratch.path());
@@ -276,7 +276,7 @@ TEST(BadMesh, TagRuleViolationsAndBadTagsWriteNothing) {
 // A run killed by SIGINT or SIGTERM removes its pending temporaries and dies of the signal.
 
 void expect_killed_render_leaves_nothing(int sig) {
-  if (!fs::exists(kWuson)) GTEST_SKIP() << kWuson << " not installed (assimp-testmodels)";
+  if (!fs::exists(kWuson)) FAIL() << kWuson << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   const std::string output = d.at("out.png").string();
   const pid_t pid = ::fork();

@@ -77,7 +77,7 @@ struct CliDirs {
 };
 
 TEST(CliInfo, PrintsCountsOfWuson) {
-  if (!fs::exists(kWuson)) GTEST_SKIP() << kWuson << " not installed (assimp-testmodels)";
+  if (!fs::exists(kWuson)) FAIL() << kWuson << " is missing: scripts/setup.sh installs assimp-testmodels";
   TempDir scratch;
   const RunResult r = tessim({"info", kWuson.string()}, scratch.path());
   EXPECT_EQ(r.status, 0) << r.err;
@@ -90,7 +90,7 @@ TEST(CliInfo, PrintsCountsOfWuson) {
 
 TEST(CliInfo, JsonOutput) {
   const fs::path off = "/usr/share/assimp/models/OFF/Wuson.off";
-  if (!fs::exists(off)) GTEST_SKIP() << off << " not installed (assimp-testmodels)";
+  if (!fs::exists(off)) FAIL() << off << " is missing: scripts/setup.sh installs assimp-testmodels";
   TempDir scratch;
   const RunResult r = tessim({"info", "--json", off.string()}, scratch.path());
   ASSERT_EQ(r.status, 0) << r.err;
@@ -148,7 +148,7 @@ TEST(CliTessellate, StandardOutputCarriesTheSameBytesAsAFile) {
 }
 
 TEST(CliTessellate, RefusesBadInputWithoutWritingAnything) {
-  if (!fs::exists(kWuson)) GTEST_SKIP() << kWuson << " not installed (assimp-testmodels)";
+  if (!fs::exists(kWuson)) FAIL() << kWuson << " is missing: scripts/setup.sh installs assimp-testmodels";
   CliDirs d;
   const std::string out_ply = (d.work.path() / "out.ply").string();
 
@@ -278,7 +278,7 @@ void expect_pn_surface(const PlyFile& file, const Mesh& mesh, int L, NormalMode 
 }
 
 TEST(CliTessellate, WusonPlyVerticesLieOnThePnSurface) {
-  if (!fs::exists(kWuson)) GTEST_SKIP() << kWuson << " not installed (assimp-testmodels)";
+  if (!fs::exists(kWuson)) FAIL() << kWuson << " is missing: scripts/setup.sh installs assimp-testmodels";
   CliDirs d;
   const fs::path out = d.work.path() / "w4.ply";
   const RunResult r = tessim({"tessellate", kWuson.string(), "-L", "4", "-o", out.string()}, d.scratch.path());
@@ -295,7 +295,7 @@ TEST(CliTessellate, WusonPlyVerticesLieOnThePnSurface) {
 
 TEST(CliTessellate, ObjOutputIsExactToo) {
   const fs::path off = "/usr/share/assimp/models/OFF/Wuson.off";
-  if (!fs::exists(off)) GTEST_SKIP() << off << " not installed (assimp-testmodels)";
+  if (!fs::exists(off)) FAIL() << off << " is missing: scripts/setup.sh installs assimp-testmodels";
   CliDirs d;
   const fs::path out = d.work.path() / "w3.obj";
   const RunResult r = tessim({"tessellate", off.string(), "-L", "3", "--normals", "linear", "-o", out.string()}, d.scratch.path());
@@ -307,7 +307,7 @@ TEST(CliTessellate, ObjOutputIsExactToo) {
 
 TEST(CliTessellate, DefaultsAreL4Quadratic) {
   const fs::path stl = "/usr/share/assimp/models/STL/sphereWithHole.stl";
-  if (!fs::exists(stl)) GTEST_SKIP() << stl << " not installed (assimp-testmodels)";
+  if (!fs::exists(stl)) FAIL() << stl << " is missing: scripts/setup.sh installs assimp-testmodels";
   CliDirs d;
   const fs::path out = d.work.path() / "s.ply";
   const RunResult r = tessim({"tessellate", stl.string(), "--output", out.string()}, d.scratch.path());

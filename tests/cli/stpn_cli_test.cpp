@@ -37,7 +37,7 @@ nlohmann::json info_json(const fs::path& mesh, const Dirs& d) {
 }
 
 TEST(StpnImportCli, CubeCornersArePinned) {
-  if (!fs::exists(kBox)) GTEST_SKIP() << kBox << " not installed (assimp-testmodels)";
+  if (!fs::exists(kBox)) FAIL() << kBox << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   const TessimRun r = run_tessim({"stpn-import", kBox.string(), "-o", d.at("box.ply").string()}, d.scratch.path());
   ASSERT_EQ(r.status, 0) << r.err;
@@ -97,7 +97,7 @@ TEST(StpnImportCli, PrismRimsAreTaggedAndTessellated) {
 }
 
 TEST(StpnImportCli, UntaggedMeshesSayNone) {
-  if (!fs::exists(kBox)) GTEST_SKIP() << kBox << " not installed (assimp-testmodels)";
+  if (!fs::exists(kBox)) FAIL() << kBox << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   const TessimRun text = run_tessim({"info", kBox.string()}, d.scratch.path());
   EXPECT_TRUE(contains(text.out, "tags                  none (plain PN triangles)")) << text.out;
@@ -107,7 +107,7 @@ TEST(StpnImportCli, UntaggedMeshesSayNone) {
 }
 
 TEST(StpnImportCli, BadOptionsAndPathsWriteNothing) {
-  if (!fs::exists(kBox)) GTEST_SKIP() << kBox << " not installed (assimp-testmodels)";
+  if (!fs::exists(kBox)) FAIL() << kBox << " is missing: scripts/setup.sh installs assimp-testmodels";
   Dirs d;
   const std::string out = d.at("out.ply").string();
   const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {

@@ -67,7 +67,7 @@ TEST(LoadMesh, BinaryPlyLoads) {
 // Every file of assimp-testmodels' invalid/ directory, each with what it must give.
 TEST(LoadMesh, AssimpInvalidModels) {
   const fs::path dir = kModels / "invalid";
-  if (!fs::exists(dir)) GTEST_SKIP() << dir << " not installed (assimp-testmodels)";
+  if (!fs::exists(dir)) FAIL() << dir << " is missing: scripts/setup.sh installs assimp-testmodels";
 
   std::map<std::string, std::vector<std::string>> rejected = {
       // Header declares 353535235358 vertices: refused before Assimp allocates 16 GB for it.
@@ -311,7 +311,7 @@ TEST(LoadMesh, RejectsCoordinatesSinglePrecisionCannotResolve) {
 TEST(LoadMesh, RawModelsLoad) {
   for (const char* name : {"WithColor.raw", "WithTexture.raw"}) {
     const fs::path model = kModels / "RAW" / name;
-    if (!fs::exists(model)) GTEST_SKIP() << model << " not installed (assimp-testmodels)";
+    if (!fs::exists(model)) FAIL() << model << " is missing: scripts/setup.sh installs assimp-testmodels";
     const Mesh mesh = load_mesh(model);
     EXPECT_GT(mesh.triangle_count(), 0u) << model;
   }
@@ -321,7 +321,7 @@ TEST(LoadMesh, RawModelsLoad) {
 // own headers.
 TEST(LoadMesh, AssimpTestModelsThatContradictTheirHeaders) {
   const fs::path pond = kModels / "PLY/pond.0.ply", issue623 = kModels / "PLY/issue623.ply";
-  if (!fs::exists(pond) || !fs::exists(issue623)) GTEST_SKIP() << "assimp-testmodels not installed";
+  if (!fs::exists(pond) || !fs::exists(issue623)) FAIL() << "assimp-testmodels is missing: scripts/setup.sh installs it";
   // 70051 vertices of 31 bytes declared; the last 23 bytes are missing.
   EXPECT_TRUE(rejects(pond, {"pond.0.ply", "element 'vertex' 70048 of 70051", "truncated"}));
   // The header puts a vertex_indices list on the vertex element and declares no faces.
@@ -516,7 +516,7 @@ TEST(LoadMesh, RealModelsLoadWithPlausibleCounts) {
   };
   for (const RealModel& m : models) {
     const fs::path file = kModels / m.path;
-    if (!fs::exists(file)) GTEST_SKIP() << file << " not installed (assimp-testmodels)";
+    if (!fs::exists(file)) FAIL() << file << " is missing: scripts/setup.sh installs assimp-testmodels";
     SCOPED_TRACE(m.path);
     const Mesh mesh = load_mesh(file);
     EXPECT_EQ(mesh.source, file.string());
@@ -542,7 +542,7 @@ TEST(LoadMesh, RealModelsLoadWithPlausibleCounts) {
 // geometry in other files: a plausibility check of the area x angle weighting on real data.
 TEST(LoadMesh, WusonComputedNormalsAgreeWithTheExportedOnes) {
   const fs::path ply = kModels / "PLY/Wuson.ply", stl = kModels / "STL/Wuson.stl", off = kModels / "OFF/Wuson.off";
-  if (!fs::exists(ply) || !fs::exists(stl) || !fs::exists(off)) GTEST_SKIP() << "assimp-testmodels not installed";
+  if (!fs::exists(ply) || !fs::exists(stl) || !fs::exists(off)) FAIL() << "assimp-testmodels is missing: scripts/setup.sh installs it";
   const Mesh exported = load_mesh(ply);
   ASSERT_TRUE(exported.normals_from_file);
   const double diagonal = bounding_box(exported).diagonal();
