@@ -16,6 +16,7 @@
 
 #include "sim/version.hpp"
 
+#include "tests/support/input_error.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -26,31 +27,12 @@ namespace fs = std::filesystem;
 using testing::run_tessim;
 using testing::TempDir;
 using testing::TessimRun;
+using testing::Dirs;
+using testing::entries_text;
+using testing::expect_input_error;
 
 const fs::path kCube = "/usr/share/assimp/models/OFF/Cube.off";
 const fs::path kWuson = "/usr/share/assimp/models/PLY/Wuson.ply";
-
-// Where commands write (`work`), apart from the captured streams (`scratch`).
-struct Dirs {
-  TempDir scratch;
-  TempDir work;
-  fs::path at(const std::string& name) const { return work.path() / name; }
-};
-
-std::string entries_text(const TempDir& dir) {
-  std::string s;
-  for (const std::string& e : dir.entries()) s += " " + e;
-  return s;
-}
-
-// Exit status 2, one "tessim: error: ..." line containing every piece of `expected`, and
-// CLI11's own format nowhere.
-void expect_input_error(const TessimRun& r, const std::vector<std::string>& expected) {
-  EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_EQ(r.err.rfind("tessim: error: ", 0), 0u) << r.err;
-  EXPECT_EQ(r.err.find("Run with --help"), std::string::npos) << r.err;
-  for (const std::string& piece : expected) EXPECT_NE(r.err.find(piece), std::string::npos) << "missing '" << piece << "' in: " << r.err;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Outputs: every path is checked and opened before anything is computed or moved into place.

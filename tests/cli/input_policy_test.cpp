@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/input_error.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -20,32 +21,11 @@ namespace fs = std::filesystem;
 using testing::run_tessim;
 using testing::TempDir;
 using testing::TessimRun;
+using testing::Dirs;
+using testing::entries_text;
+using testing::expect_input_error;
 
 const fs::path kCube = "/usr/share/assimp/models/OFF/Cube.off";
-
-struct Dirs {
-  TempDir scratch;
-  TempDir work;
-  fs::path at(const std::string& name) const { return work.path() / name; }
-};
-
-std::string entries_text(const TempDir& dir) {
-  std::string s;
-  for (const std::string& e : dir.entries()) s += " " + e;
-  return s;
-}
-
-// Exit status 2, one "tessim: error: ..." line holding every piece of `expected`, nothing
-// printed on stdout.
-void expect_input_error(const TessimRun& r, const std::vector<std::string>& expected) {
-  EXPECT_EQ(r.status, 2) << r.err;
-  EXPECT_EQ(r.err.rfind("tessim: error: ", 0), 0u) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_EQ(r.err.find("[json.exception"), std::string::npos) << r.err;
-  EXPECT_TRUE(r.out.empty()) << r.out;
-  for (const std::string& piece : expected)
-    EXPECT_NE(r.err.find(piece), std::string::npos) << "missing '" << piece << "' in: " << r.err;
-}
 
 // Statistics of a real run, for compare.
 fs::path stats_of_cube(const Dirs& d, const std::string& name) {
