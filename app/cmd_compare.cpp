@@ -155,14 +155,15 @@ void run(const CompareArgs& args) {
     // The timeline's buckets are a time series, not figures of the run (and two runs' buckets
     // differ in width): left out.
     if (k.rfind("units.", 0) == 0 || k.rfind("tool.", 0) == 0 || k.rfind("timeline.", 0) == 0) continue;
-    if (!selected(k)) continue;
     const json* x = fa.contains(k) ? &fa.at(k) : nullptr;
     const json* y = fb.contains(k) ? &fb.at(k) : nullptr;
     Row r{k, x ? text(*x) : "-", y ? text(*y) : "-", "", ""};
+    // The configuration keys that differ say what the two runs are: shown whatever --key selects.
     if (k.rfind("config.", 0) == 0 || k == "mesh") {
       if (r.va != r.vb) config.push_back(r);
       continue;
     }
+    if (!selected(k)) continue;
     if (args.changed && x && y && *x == *y) continue;
     if (x && y && x->is_number() && y->is_number()) {
       const double p = x->get<double>(), q = y->get<double>();
@@ -226,7 +227,8 @@ void register_compare(CLI::App& app) {
   sub->add_flag("--csv", args->csv, "print CSV (key, a, b, ratio_b_over_a, unit) instead of a table");
   sub->add_flag("--changed", args->changed, "only the figures that differ between A and B");
   sub->add_option("--key", args->prefixes,
-                  "only the keys that start with this prefix (e.g. analytic., int.blocks); repeatable");
+                  "only the figures whose keys start with this prefix (e.g. analytic., int.blocks; the "
+                  "configuration keys that differ are always shown); repeatable");
   sub->callback([args]() { run(*args); });
 }
 

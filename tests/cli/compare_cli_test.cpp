@@ -157,6 +157,9 @@ TEST(CompareCli, IntegersExactKeysInNaturalOrderAndFilters) {
   ASSERT_FALSE(some.empty()) << r.out;
   for (const std::string& k : some)
     EXPECT_TRUE(k.rfind("analytic.", 0) == 0 || k.rfind("gpe.", 0) == 0) << k;
+  // The configuration keys that differ still say what the two runs are.
+  EXPECT_EQ(r.out.find("configuration: the same"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\nconfig.tess_factor "), std::string::npos) << r.out;
   r = testing::run_tessim({"compare", a.string(), b.string(), "--changed", "--csv"}, dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out.find("\nschema_version,"), std::string::npos) << r.out;  // the same in both
