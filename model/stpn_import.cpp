@@ -399,21 +399,22 @@ StImport import_st_mesh(const std::filesystem::path& path, const StImportOptions
                         std::vector<std::string>* warnings) {
   io::ImportedMesh imported = io::import_mesh(path);
   // An ST-mesh given again: its tags are replaced by the ones found here, which is said, not
-  // done silently (it loses whatever was set by hand).
-  const auto acting = std::count_if(imported.mesh.tags.begin(), imported.mesh.tags.end(),
+  // done silently (it loses whatever was set by hand). They are still checked as every command
+  // checks them, on the welded mesh: a malformed file is refused, not silently repaired by
+  // replacing what is wrong in it; and the count is of welded vertices, as `tessim info` counts.
+  const bool has_tags = std::any_of(imported.mesh.tags.begin(), imported.mesh.tags.end(),
                                     [](const VertexTags& t) { return !t.neutral(); });
-  if (acting > 0) {
-    // The file's tags are still checked as every command checks them: a malformed file is
-    // refused, not silently repaired by replacing what is wrong in it.
+  if (has_tags) {
     std::vector<std::uint32_t> first_copies;
     Mesh given = weld(imported.mesh, [&](std::uint32_t v) { return imported.vertex_name(v); }, &first_copies);
     if (!given.normals_from_file) given = compute_normals(std::move(given));
     validate_tags(given, [&](std::uint32_t v) { return imported.vertex_name(first_copies[v]); });
-  }
-  if (acting > 0)
+    const auto acting =
+        std::count_if(given.tags.begin(), given.tags.end(), [](const VertexTags& t) { return !t.neutral(); });
     imported.warnings.push_back(path.string() + ": tags: " + std::to_string(acting) +
                                 " vertices already carry scalar tags; they are replaced by the tags derived from "
                                 "the mesh's creases (the file's own tags are not kept)");
+  }
   for (const std::string& w : imported.warnings) {
     if (warnings) warnings->push_back(w);
     else std::fprintf(stderr, "tessim: warning: %s\n", printable_text(w, 960).c_str());

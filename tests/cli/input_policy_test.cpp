@@ -149,6 +149,29 @@ TEST(BadInputTags, StpnImportOfATaggedMeshSaysItReplacesTheTags) {
   EXPECT_NE(again.err.find(" vertices already carry scalar tags; they are replaced"), std::string::npos) << again.err;
 }
 
+// The same tetrahedron with every corner written once per face (12 vertices): the apex, with
+// tension 1, is 3 copies of one vertex.
+TEST(BadInputTags, StpnImportCountsWeldedVerticesAsInfoDoes) {
+  Dirs d;
+  const char* corners[4] = {"0 0 1 0 0 0 0 1 0", "1 0 0 0 0 0 0 0 0", "0 1 0 0 0 0 0 0 0", "-1 -1 -1 0 0 0 0 0 0"};
+  const int faces[4][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex 12\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property double dx\nproperty double dy\nproperty double dz\nproperty double sigma\n"
+                    "property double theta\nproperty double beta\nelement face 4\n"
+                    "property list uchar int vertex_indices\nend_header\n";
+  for (const auto& f : faces)
+    for (int c : f) ply += std::string(corners[c]) + "\n";
+  for (int f = 0; f < 4; ++f)
+    ply += "3 " + std::to_string(3 * f) + " " + std::to_string(3 * f + 1) + " " + std::to_string(3 * f + 2) + "\n";
+  const fs::path split = d.scratch.write("split.ply", ply);
+  const TessimRun info = run_tessim({"info", split.string()}, d.work.path());
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_NE(info.out.find("vertices with tags    1 "), std::string::npos) << info.out;
+  const TessimRun r = run_tessim({"stpn-import", split.string(), "-o", d.at("out.ply").string()}, d.work.path());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find(": tags: 1 vertices already carry scalar tags"), std::string::npos) << r.err;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Accepted but ambiguous: now input errors.
 
