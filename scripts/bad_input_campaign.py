@@ -467,6 +467,7 @@ def main() -> int:
     ap.add_argument("--json", help="write one record per case to this file")
     ap.add_argument("--min-cases", type=int, default=800, help="fail when fewer cases are generated (default 800)")
     ap.add_argument("--only", help="run only the cases of this group")
+    ap.add_argument("--count", action="store_true", help="print the number of cases and exit (runs nothing)")
     a = ap.parse_args()
     for required in (WUSON, CUBE):
         if not required.exists():
@@ -486,6 +487,9 @@ def main() -> int:
         write_fixtures(data, sample.read_bytes())
         shutil.copy(sample, data / "sample.json")
         cases = build_cases(data)
+        if a.count:
+            print(len(cases))
+            return 0
         if a.only:
             cases = [c for c in cases if c.group == a.only]
         elif len(cases) < a.min_cases:
