@@ -4,7 +4,7 @@
 # transistors, logic depth. For blocks synth.sh does not report separately (the DPG, the FSU).
 #
 # Usage: scripts/block_cost.sh MODULE [RTL_DIR] [-chparam NAME VALUE ...]
-#   RTL_DIR   where tess_pkg.sv and the tess_*.sv sources are (default: rtl/); another checkout's
+#   RTL_DIR   where tess.f and the sources it lists are (default: rtl/); another checkout's
 #             rtl/ costs an older version of a block the same way.
 set -euo pipefail
 module=${1:?usage: block_cost.sh MODULE [RTL_DIR] [-chparam NAME VALUE ...]}
@@ -17,8 +17,7 @@ while (($#)); do
   [[ $1 == -chparam && $# -ge 3 ]] || { echo "block_cost.sh: expected -chparam NAME VALUE" >&2; exit 2; }
   chparam+=" -set $2 $3"; shift 3
 done
-sources="$rtl/tess_pkg.sv"
-while IFS= read -r f; do sources+=" $f"; done < <(ls "$rtl"/tess_*.sv | grep -v '/tess_pkg\.sv$' | LC_ALL=C sort)
+sources=$(sed -e '/^ *\/\//d' -e '/^ *$/d' -e "s|^|$rtl/|" "$rtl/tess.f" | tr '\n' ' ')
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 yosys -q -l "$work/log" -p "read_verilog -sv $sources; ${chparam:+chparam$chparam $module;} \

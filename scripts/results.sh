@@ -15,16 +15,16 @@
 #                       a tessim-only build without the RTL models, tests or benchmarks)
 #   --tessim PATH       use this tessim binary, build nothing
 #   --out DIR           write the figures, tables and results there instead of docs/results[/full]
-#   --resynth           synthesize every configuration again (into DIR/costs-cache) instead of
-#                       using the Yosys results recorded in docs/results/costs/
+#   --resynth           synthesize every module record again (into DIR/costs-cache) instead of
+#                       using the Yosys records kept in docs/results/costs/modules/
 #   --recorded-costs    synthesize nothing: fail if a configuration has no recorded cost for the
 #                       current RTL (the check the test suite runs)
 #
 # Steps: packages (scripts/setup.sh --deps); tessim; the sweep (resumable: its cache is
 # DIR/results/<set>/cache, rerun to continue after an interruption); the hardware costs
-# (scripts/costs.py: Yosys results are looked up in docs/results/costs/ by a hash of the RTL
-# sources, synth.sh and the Yosys version, and synthesized when missing: minutes per
-# configuration); the figures (scripts/plots.py).
+# (scripts/costs.py: each configuration is composed from per-module Yosys records, looked up in
+# docs/results/costs/modules/ by a hash of what Yosys reads for the module and synthesized when
+# missing: an RTL edit costs the records of the modules it touches); the figures (scripts/plots.py).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -34,7 +34,7 @@ jobs=$(nproc)
 build=build-results
 tessim=""
 out=""
-cost_cache="$root/docs/results/costs"
+cost_cache="$root/docs/results/costs/modules"
 cost_mode=()
 while (($#)); do
   case "$1" in
@@ -68,9 +68,9 @@ fi
 if [[ $set_name == small ]]; then
   [[ -n $out ]] || out="$root/docs/results"
   # The Pareto figure needs the unit's cost at each N of the balance grid (default widths, Λ = 1,
-  # V = 4); the small set keeps to the N that matter for the conclusions. The CPG variants of the
-  # cpg grid are costed as those units with their CPG replaced (costs.py --compose-cpg).
-  cost_filter=(--where grid=balance int_blocks=1,2,3,4,6 --where grid=cpg --compose-cpg)
+  # V = 4); the small set keeps to the N that matter for the conclusions, and the CPG variants of
+  # the cpg grid.
+  cost_filter=(--where grid=balance int_blocks=1,2,3,4,6 --where grid=cpg)
 elif [[ $set_name == full ]]; then
   [[ -n $out ]] || out="$root/docs/results/full"
   cost_filter=(--where grid=balance,costs int_blocks=1,2,3,4,5,6)
@@ -85,7 +85,8 @@ start=$SECONDS
 "$python" scripts/sweep.py "scripts/sweeps/$set_name.json" -o "$work/results.csv" --cache "$work/cache" \
   --jobs "$jobs" --tessim "$tessim"
 if ((${#cost_filter[@]})); then
-  "$python" scripts/costs.py "$work/results.csv" --in-place --tessim "$tessim" --cache "$cost_cache" "${cost_filter[@]}" \
+  "$python" scripts/costs.py "$work/results.csv" --in-place --tessim "$tessim" --cache "$cost_cache" --jobs "$jobs" \
+    "${cost_filter[@]}" \
     "${cost_mode[@]}"
 fi
 cp "$work/results.csv" "$out/results.csv"

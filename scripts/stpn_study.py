@@ -10,7 +10,7 @@ docs/results/load-balancing.md §12; scripts/results.sh runs it with the small s
 deterministic (no random stalls), so a rerun reproduces every number.
 
 With --cost-cache DIR it also costs the CPG that takes scalar tags against the plain one
-(scripts/costs.py --compose-cpg, Yosys results looked up in DIR), writes OUT/stpn_costs.csv and
+(scripts/costs.py, Yosys module records looked up in DIR), writes OUT/stpn_costs.csv and
 prints a second table; --require-cached synthesizes nothing (fails if a cost is not recorded).
 """
 import argparse
@@ -128,7 +128,7 @@ def main():
 
 def cost_table(a):
     """The CPG that takes scalar tags against the plain one, sequential and r = 4, in the unit with
-    N = 2 (default widths): Yosys through scripts/costs.py --compose-cpg."""
+    N = 2 (default widths): Yosys records composed by scripts/costs.py."""
     schema = json.loads(run(a.tessim, ["schema"]).stdout)
     defaults = {p["key"]: p["default"] for p in schema["parameters"]}
     rows = []
@@ -148,7 +148,7 @@ def cost_table(a):
             w.writerows(rows)
         here = os.path.dirname(os.path.abspath(__file__))
         subprocess.run([sys.executable, os.path.join(here, "costs.py"), work, "--in-place", "--tessim", a.tessim,
-                        "--cache", a.cost_cache, "--compose-cpg", "--where", "grid=stpn_cost"]
+                        "--cache", a.cost_cache, "--where", "grid=stpn_cost"]
                        + (["--require-cached"] if a.require_cached else []), check=True)
         with open(work, newline="") as f:
             costed = list(csv.DictReader(f))

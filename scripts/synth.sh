@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Hardware cost of one configuration of the unit with Yosys (docs/rtl.md: cost method):
+# Hardware cost of one configuration of the unit with Yosys, flattened (docs/rtl.md: cost method;
+# the study composes the same figures from per-module records, scripts/yosys_cost.py, and this
+# flat synthesis measures how close the composition is):
 #   - generic `synth` cell count and flip-flops,
 #   - `stat -tech cmos` transistor estimate after flip-flop legalisation (async2sync;
 #     dfflegalize -cell $_DFF_P_ 01), so that every cell has a cost and the total is exact,
@@ -10,12 +12,10 @@
 #
 # Usage: scripts/synth.sh [options] [N] [-chparam NAME VALUE ...]
 #   N                   INT blocks (IntBlocks), default tess_pkg::IntBlocks
-#   -chparam NAME VALUE any other parameter of tess_unit (CoordIntBits, CoordFracBits,
-#                       BaryBits, IntLatency, Contexts, TriFifoDepth, VtxFifoDepth, CpgLanes,
-#                       CpgDigitBits, CpgTags)
+#   -chparam NAME VALUE any other parameter of tess_unit (those of tess_pkg, e.g. IntLatency)
 #   --json FILE         also write the numbers as JSON (FILE = - for stdout only)
 #   --no-blocks         only the whole unit
-#   --cpg-only          only the CPG (costs.py --compose-cpg: a CPG variant in a known unit)
+#   --cpg-only          only the CPG
 #   --no-xilinx         skip synth_xilinx
 #   --jobs J            Yosys runs in parallel (default 2)
 #   --keep DIR          keep the Yosys logs and reports in DIR
@@ -53,18 +53,15 @@ while (($#)); do
     *) echo "synth.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
+# Parameter defaults from the package (every tess_unit parameter has one there). A parameter set
+# to its default is dropped: Yosys elaborates an explicitly parameterised top slightly differently
+# (a few tenths of a percent of the cells), and one configuration must give one result however it
+# is spelt.
+pkg_default() { sed -n "s/^ *localparam int unsigned $1 *= *\([0-9]*\);.*/\1/p" "$root/rtl/tess_pkg.sv"; }
 for name in "${order[@]}"; do
   [[ ${params[$name]} =~ ^[0-9]+$ ]] || { echo "synth.sh: $name must be a number" >&2; exit 2; }
-  case "$name" in
-    CoordIntBits|CoordFracBits|BaryBits|IntBlocks|IntLatency|Contexts|TriFifoDepth|VtxFifoDepth|CpgLanes|CpgDigitBits|CpgTags) ;;
-    *) echo "synth.sh: tess_unit has no parameter '$name'" >&2; exit 2 ;;
-  esac
+  [[ $name =~ ^[A-Za-z]+$ && -n $(pkg_default "$name") ]] || { echo "synth.sh: tess_unit has no parameter '$name'" >&2; exit 2; }
 done
-
-# Parameter defaults from the package. A parameter set to its default is dropped: Yosys
-# elaborates an explicitly parameterised top slightly differently (a few tenths of a percent
-# of the cells), and one configuration must give one result however it is spelt.
-pkg_default() { sed -n "s/^ *localparam int unsigned $1 *= *\([0-9]*\);.*/\1/p" "$root/rtl/tess_pkg.sv"; }
 declare -a kept=()
 for name in "${order[@]}"; do
   if [[ ${params[$name]} == "$(pkg_default "$name")" ]]; then unset "params[$name]"; else kept+=("$name"); fi
@@ -73,9 +70,8 @@ order=("${kept[@]}")
 
 command -v yosys > /dev/null || { echo "synth.sh: yosys not found" >&2; exit 2; }
 
-# Package first, then the modules in name order.
-sources="$root/rtl/tess_pkg.sv"
-while IFS= read -r f; do sources+=" $f"; done < <(ls "$root"/rtl/tess_*.sv | grep -v '/tess_pkg\.sv$' | LC_ALL=C sort)
+# The sources of rtl/tess.f, in its order.
+sources=$(sed -e '/^ *\/\//d' -e '/^ *$/d' -e "s|^|$root/rtl/|" "$root/rtl/tess.f" | tr '\n' ' ')
 
 if [[ -n $keep ]]; then
   mkdir -p "$keep"

@@ -1,0 +1,621 @@
+#!/usr/bin/python3
+"""Hardware cost of a configuration of the unit, composed from per-module Yosys records.
+
+    yosys_cost.py [-chparam NAME VALUE]... [--cache DIR] [--jobs J] [--no-xilinx]
+                  [--require-cached] [--json FILE] [--rtl DIR] [--compare-flat]
+
+The unit is elaborated with its parameters (Yosys 0.23: read the sources of rtl/tess.f, chparam,
+hierarchy, proc; about a second), which gives every module as it is instantiated: one derived
+module per distinct parameter set. Each derived module is a *record*, costed on its own with its
+submodules as black boxes (docs/rtl.md, Cost method): generic `synth` cells and flip-flops,
+`stat -tech cmos` transistors after flip-flop legalisation, `ltp -noff` logic depth, and
+`synth_xilinx` LUT/FF/DSP/CARRY4. The small leaf modules in INLINE are synthesized inside their
+parents instead (a saturation is a few gates; a boundary around it would hide the constants its
+parent feeds it).
+
+A record is stored under the SHA-256 of exactly what Yosys reads for it: the module's elaborated
+RTLIL with source locations dropped and automatic names renumbered, its inlined submodules, the
+ports of its black-box submodules, and the synthesis commands. Editing one module's source
+therefore re-synthesizes only the records of that module (and of a parent it is inlined into);
+a comment or an edit elsewhere in the same file changes nothing.
+
+The unit's figures are the sums over its module instances (cells, flip-flops, transistors and
+Xilinx cells); its logic depth is the deepest record's, which holds where module boundaries are
+registered and is compared with flattened syntheses in docs/rtl.md. Blocks reported: tess_unit,
+tess_cpg (its subtree), tess_int (one INT block), and every record with its instance count.
+"""
+
+import argparse
+import hashlib
+import json
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+RECORD_SCHEMA = 1
+# Leaf modules synthesized inside their parents rather than as records of their own.
+INLINE = ("tess_sat", "tess_dpg_place")
+TOP = "tess_unit"
+# Reported as blocks: the module and its subtree.
+BLOCKS = ("tess_unit", "tess_cpg", "tess_int")
+
+GENERIC_SCRIPT = """\
+read_rtlil {job}
+hierarchy -top {top}
+flatten
+synth -top {top}
+tee -q -o {out}.cells stat
+async2sync
+dfflegalize -cell $_DFF_P_ 01
+write_json {out}.json
+{delete}tee -q -o {out}.cmos stat -tech cmos
+tee -q -o {out}.ltp ltp -noff
+"""
+XILINX_SCRIPT = """\
+read_rtlil {job}
+hierarchy -top {top}
+flatten
+synth_xilinx -top {top}
+{delete}tee -q -o {out}.xil stat
+"""
+FLOP_CELL = re.compile(r"\$_(S?DFF|DFFE|SDFFE|SDFFCE|ALDFF|DFFSR|DLATCH)")
+
+
+class CostError(Exception):
+    pass
+
+
+def rtl_sources(rtl_dir):
+    """The sources of rtl/tess.f (package first), as paths."""
+    listing = Path(rtl_dir) / "tess.f"
+    lines = [line.strip() for line in listing.read_text().splitlines()]
+    return [Path(rtl_dir) / line for line in lines if line and not line.startswith("//")]
+
+
+def yosys_version():
+    try:
+        return subprocess.run(["yosys", "-V"], capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError) as e:
+        raise CostError(f"yosys not available: {e}")
+
+
+def package_defaults(rtl_dir):
+    """tess_pkg's `localparam int unsigned Name = value;` defaults."""
+    text = (Path(rtl_dir) / "tess_pkg.sv").read_text()
+    return {m.group(1): int(m.group(2))
+            for m in re.finditer(r"^\s*localparam\s+int\s+unsigned\s+(\w+)\s*=\s*(\d+)\s*;", text, re.M)}
+
+
+def run_yosys(script, log, cwd):
+    proc = subprocess.run(["yosys", "-q", "-l", str(log), "-s", str(script)], capture_output=True, text=True,
+                          cwd=cwd)
+    if proc.returncode != 0:
+        tail = "\n".join(Path(log).read_text().splitlines()[-15:]) if Path(log).exists() else proc.stderr
+        raise CostError(f"yosys {script.name} failed:\n{tail}")
+
+
+class Module:
+    def __init__(self, name, attributes):
+        self.name = name
+        self.base = name
+        for a in attributes:
+            m = re.match(r'attribute \\hdlname "\\\\(\S+)"', a)
+            if m:
+                self.base = m.group(1)
+        if self.base.startswith("\\"):
+            self.base = self.base[1:]
+        self.attributes = [a for a in attributes if not a.startswith("attribute \\src ")]
+        self.body = []    # lines between `module` and its `end`, source locations dropped
+        self.ports = []   # the port `wire` lines
+        self.cells = []     # (type, name) of every cell
+        self.children = []  # cell types that are modules of the design, one entry per instance
+        self.instances = {}  # cell name -> module, for those cells
+
+
+AUTO_NAME = re.compile(r"(?<!\S)\$(?!paramod)[^\s$]*\$\S*")
+
+
+def parse_rtlil(text):
+    """Modules of an elaborated, proc'd RTLIL dump: module -> Module (cells reference modules by name)."""
+    modules = {}
+    pending = []
+    current = None
+    depth = 0
+    for raw in text.splitlines():
+        line = raw.strip()
+        if current is None:
+            if line.startswith("attribute "):
+                pending.append(line)
+            elif line.startswith("module "):
+                current = Module(line.split(None, 1)[1], pending)
+                pending = []
+                depth = 0
+            continue
+        if line == "end":
+            if depth == 0:
+                modules[current.name] = current
+                current = None
+                continue
+            depth -= 1
+        elif line.startswith("cell "):
+            depth += 1
+            _, cell_type, cell_name = line.split()[:3]
+            current.cells.append((cell_type, cell_name))
+        elif line.startswith("wire ") and re.search(r"\b(input|output|inout) \d+\b", line):
+            current.ports.append(line)
+        if line.startswith("attribute \\src "):
+            continue
+        current.body.append(line)
+    for m in modules.values():
+        m.instances = {name[1:] if name.startswith("\\") else name: t for t, name in m.cells if t in modules}
+        m.children = list(m.instances.values())
+    return modules
+
+
+def normalized(module):
+    """The module's text with automatic names ($add$file:line$N ...) numbered in order of appearance,
+    so that its text depends on the module alone, not on where it sits in the elaboration."""
+    names = {}
+
+    def rename(match):
+        return names.setdefault(match.group(0), f"$auto${len(names)}")
+
+    lines = module.attributes + [f"module {module.name}"]
+    lines += [AUTO_NAME.sub(rename, line) for line in module.body]
+    lines.append("end")
+    return "\n".join(lines) + "\n"
+
+
+def stub(module):
+    return "\n".join(["attribute \\blackbox 1", f"module {module.name}", *module.ports, "end"]) + "\n"
+
+
+def is_inline(module):
+    return module.base in INLINE
+
+
+def record_text(modules, name):
+    """What Yosys reads to cost record `name`: the module, its inlined submodules (recursively) and
+    black-box stubs of its other submodules. Returns (text, black-box module names)."""
+    parts = [normalized(modules[name])]
+    boxes = []
+    seen = {name}
+    stack = list(modules[name].children)
+    while stack:
+        child = stack.pop(0)
+        if child in seen:
+            continue
+        seen.add(child)
+        if is_inline(modules[child]):
+            parts.append(normalized(modules[child]))
+            stack.extend(modules[child].children)
+        else:
+            parts.append(stub(modules[child]))
+            boxes.append(child)
+    return "".join(parts), sorted(boxes)
+
+
+def instance_counts(modules, top):
+    """Record -> instances under `top` (inlined modules count as part of their parents)."""
+    counts = {}
+
+    def visit(name, times):
+        counts[name] = counts.get(name, 0) + times
+        for child in modules[name].children:
+            if is_inline(modules[child]):
+                continue
+            visit(child, times)
+
+    visit(top, 1)
+    return counts
+
+
+_ELABORATED = {}
+
+
+def elaborate(rtl_dir, params, work):
+    """Elaborates tess_unit with `params` (name -> value, defaults dropped) into RTLIL. Memoized
+    per process on the parameters and the sources' content."""
+    sources = rtl_sources(rtl_dir)
+    memo = (tuple(sorted(params.items())), tuple(p.read_bytes() for p in sources))
+    if memo not in _ELABORATED:
+        _ELABORATED[memo] = _elaborate(sources, params, work)
+    return _ELABORATED[memo]
+
+
+def _elaborate(sources, params, work):
+    sources = " ".join(str(p) for p in sources)
+    chparam = "".join(f"chparam -set {k} {v} {TOP}\n" for k, v in params.items())
+    script = Path(work) / "elaborate.ys"
+    script.write_text(f"read_verilog -sv {sources}\n{chparam}hierarchy -check -top {TOP}\nproc\n"
+                      f"write_rtlil {work}/design.il\n")
+    run_yosys(script, Path(work) / "elaborate.log", work)
+    return parse_rtlil((Path(work) / "design.il").read_text())
+
+
+def top_name(modules):
+    return next(n for n, m in modules.items() if m.base == TOP)
+
+
+def record_key(text, yosys, xilinx):
+    h = hashlib.sha256()
+    ident = {"schema": RECORD_SCHEMA, "yosys": yosys, "xilinx": xilinx, "generic": GENERIC_SCRIPT,
+             "xilinx_script": XILINX_SCRIPT if xilinx else ""}
+    h.update(json.dumps(ident, sort_keys=True).encode())
+    h.update(text.encode())
+    return h.hexdigest()
+
+
+def cell_table(text):
+    cells, total = {}, None
+    for line in text.splitlines():
+        m = re.match(r"\s+Number of cells:\s+(\d+)", line)
+        if m:
+            total = int(m.group(1))
+            continue
+        m = re.match(r"\s+(\S+)\s+(\d+)$", line)
+        if m and total is not None:
+            cells[m.group(1)] = int(m.group(2))
+    return total, cells
+
+
+def synthesize_record(name, text, boxes, xilinx, work):
+    """Costs one record with Yosys; returns its figures."""
+    job = Path(work) / "job.il"
+    job.write_text(text)
+    delete = "".join(f"delete t:{b}\n" for b in boxes)
+    out = Path(work) / "out"
+    start = time.monotonic()
+    generic = Path(work) / "generic.ys"
+    generic.write_text(GENERIC_SCRIPT.format(job=job, top=name, delete=delete, out=out))
+    run_yosys(generic, Path(work) / "generic.log", work)
+    total, cells = cell_table(Path(f"{out}.cells").read_text())
+    total -= sum(cells.pop(b, 0) for b in boxes)  # the submodules' instances are their own records
+    paths = port_timing(json.loads(Path(f"{out}.json").read_text()), name, boxes)
+    cmos = Path(f"{out}.cmos").read_text()
+    t = re.search(r"Estimated number of transistors:\s+(\d+)(\+?)", cmos)
+    ltp = re.search(r"Longest topological path in .* \(length=(\d+)\)", Path(f"{out}.ltp").read_text())
+    entry = {
+        "cells": total or 0,
+        "flops": sum(v for k, v in cells.items() if FLOP_CELL.match(k)),
+        "transistors": int(t.group(1)) if t else 0,
+        "transistors_exact": bool(t) and t.group(2) == "",
+        "depth": int(ltp.group(1)) if ltp else 0,
+        "paths": sorted([src, sink, gates] for (src, sink), gates in paths.items()),
+    }
+    if xilinx:
+        script = Path(work) / "xilinx.ys"
+        script.write_text(XILINX_SCRIPT.format(job=job, top=name, delete=delete, out=out))
+        run_yosys(script, Path(work) / "xilinx.log", work)
+        _, xc = cell_table(Path(f"{out}.xil").read_text())
+        entry["xilinx"] = {
+            "lut": sum(v for k, v in xc.items() if re.match(r"LUT\d$", k)),
+            "ff": sum(v for k, v in xc.items() if re.match(r"FD[A-Z]*$", k)),
+            "dsp": sum(v for k, v in xc.items() if k.startswith("DSP48")),
+            "carry4": xc.get("CARRY4", 0),
+            "muxf": sum(v for k, v in xc.items() if k.startswith("MUXF")),
+            "srl": sum(v for k, v in xc.items() if k.startswith("SRL")),
+        }
+    entry["seconds"] = round(time.monotonic() - start, 1)
+    return entry
+
+
+def unescape(name):
+    """A module or cell name as write_json spells it (no leading backslash)."""
+    return name[1:] if name.startswith("\\") else name
+
+
+def port_timing(netlist, top, boxes):
+    """Longest paths of a synthesized record (write_json after flip-flop legalisation) between its
+    boundaries: {(source, sink): gates}, counting every cell on the way as `ltp` does. Sources are
+    input ports ("in:P"), flip-flop outputs ("reg") and black-box output bits ("box:INST.P[i]");
+    sinks are output bits ("out:P[i]"), flip-flop inputs ("reg") and black-box input ports
+    ("box:INST.P"). Outputs are kept per bit: a port often bundles fields of very different depth
+    (the FSU's edge setup), and a parent that reads a shallow field must not inherit a deep one."""
+    module = netlist["modules"][unescape(top)]
+    box_types = {unescape(b) for b in boxes}
+    arrival = {}  # bit -> {source: gates}
+    for name, port in module["ports"].items():
+        if port["direction"] == "input":
+            for bit in port["bits"]:
+                if isinstance(bit, int):
+                    arrival[bit] = {f"in:{name}": 0}
+    driver_of = {}
+    sinks = []  # (bit, sink tag)
+    comb = []
+    for cname, cell in module["cells"].items():
+        kind = cell["type"]
+        dirs = cell.get("port_directions", {})
+        if kind.startswith("$_DFF") or kind.startswith("$_SDFF") or kind.startswith("$_DLATCH"):
+            for bit in cell["connections"].get("Q", []):
+                arrival[bit] = {"reg": 0}
+            for pin in ("D", "E", "R", "S"):
+                sinks += [(bit, "reg") for bit in cell["connections"].get(pin, [])]
+        elif kind in box_types:  # a submodule: a record of its own
+            inst = unescape(cname)
+            for pin, bits in cell["connections"].items():
+                if dirs.get(pin) == "output":
+                    for i, bit in enumerate(bits):
+                        arrival[bit] = {f"box:{inst}.{pin}[{i}]": 0}
+                else:
+                    sinks += [(bit, f"box:{inst}.{pin}") for bit in bits]
+        else:
+            ins = [b for pin, bits in cell["connections"].items() if dirs.get(pin) != "output" for b in bits]
+            outs = [b for pin, bits in cell["connections"].items() if dirs.get(pin) == "output" for b in bits]
+            comb.append((ins, outs))
+            for b in outs:
+                driver_of[b] = len(comb) - 1
+    for name, port in module["ports"].items():
+        if port["direction"] == "output":
+            sinks += [(bit, f"out:{name}[{i}]") for i, bit in enumerate(port["bits"])]
+    # Kahn's order over the combinational cells.
+    waiting = [0] * len(comb)
+    users = {}
+    for i, (ins, _) in enumerate(comb):
+        for b in ins:
+            if b in driver_of:
+                waiting[i] += 1
+                users.setdefault(b, []).append(i)
+    ready = [i for i, n in enumerate(waiting) if n == 0]
+    done = 0
+    while ready:
+        i = ready.pop()
+        done += 1
+        ins, outs = comb[i]
+        merged = {}
+        for b in ins:
+            for tag, d in arrival.get(b, {}).items():
+                if d + 1 > merged.get(tag, -1):
+                    merged[tag] = d + 1
+        for b in outs:
+            arrival[b] = merged
+            for j in users.get(b, ()):
+                waiting[j] -= 1
+                if waiting[j] == 0:
+                    ready.append(j)
+    if done != len(comb):
+        raise CostError(f"{top}: combinational loop in the synthesized netlist")
+    paths = {}
+    for bit, sink in sinks:
+        for tag, d in arrival.get(bit, {}).items():
+            key = (tag, sink)
+            if d > paths.get(key, -1):
+                paths[key] = d
+    return paths
+
+
+def composed_depth(modules, records, top):
+    """Longest path through the hierarchy under `top`, from every record's port-level paths:
+    a black-box pin of a parent is the child's port."""
+    edges = {}  # node -> [(node, gates)]
+    nodes = set()
+
+    def node(path, tag):
+        return f"{path}|{tag}"
+
+    def expand(name, path):
+        for src, sink, gates in records[name]["paths"]:
+            a = node(path, "reg>" if src == "reg" else src)
+            b = node(path, "reg<" if sink == "reg" else sink)
+            edges.setdefault(a, []).append((b, gates))
+            nodes.update((a, b))
+        for inst, child in modules[name].instances.items():
+            if is_inline(modules[child]):
+                continue
+            sub = f"{path}/{inst}"
+            prefix = f"box:{inst}."
+            for src, sink, _ in records[name]["paths"]:
+                if src.startswith(prefix):  # an output bit of the child feeds the parent
+                    edges.setdefault(node(sub, "out:" + src[len(prefix):]), []).append((node(path, src), 0))
+                if sink.startswith(prefix):  # the parent drives an input port of the child
+                    edges.setdefault(node(path, sink), []).append((node(sub, "in:" + sink[len(prefix):]), 0))
+            expand(child, sub)
+
+    expand(top, "")
+    indegree = {}
+    for a, outs in edges.items():
+        indegree.setdefault(a, 0)
+        for b, _ in outs:
+            indegree[b] = indegree.get(b, 0) + 1
+    longest = {n: 0 for n in indegree}
+    previous = {}
+    ready = [n for n, d in indegree.items() if d == 0]
+    seen = 0
+    while ready:
+        a = ready.pop()
+        seen += 1
+        for b, gates in edges.get(a, ()):
+            if longest[a] + gates > longest[b] or b not in previous:
+                if longest[a] + gates >= longest[b]:
+                    longest[b] = longest[a] + gates
+                    previous[b] = a
+            indegree[b] -= 1
+            if indegree[b] == 0:
+                ready.append(b)
+    if seen != len(indegree):
+        raise CostError(f"{top}: a combinational cycle through module ports (port-level paths)")
+    if not longest:
+        return 0, []
+    end = max(longest, key=lambda n: (longest[n], n))
+    path = [end]
+    while path[-1] in previous:
+        path.append(previous[path[-1]])
+    # Where the path crosses a boundary, with the gates counted up to there.
+    return longest[end], [[n.replace("|", " "), longest[n]] for n in reversed(path)
+                          if not n.split("|", 1)[1].startswith("box:")]
+
+
+ADDITIVE = ("cells", "flops", "transistors")
+
+
+def compose(records, counts):
+    """Sum of the records over their instance counts; depth is the deepest record's."""
+    out = {k: 0 for k in ADDITIVE}
+    out["transistors_exact"] = True
+    out["depth"] = 0
+    xil = None
+    for name, n in counts.items():
+        r = records[name]
+        for k in ADDITIVE:
+            out[k] += n * r[k]
+        out["transistors_exact"] = out["transistors_exact"] and r["transistors_exact"]
+        out["depth"] = max(out["depth"], r["depth"])
+        if "xilinx" in r:
+            xil = xil or {k: 0 for k in r["xilinx"]}
+            for k, v in r["xilinx"].items():
+                xil[k] += n * v
+    if xil is not None:
+        out["xilinx"] = xil
+    return out
+
+
+def cost(params, cache, rtl_dir=REPO / "rtl", jobs=2, xilinx=True, require_cached=False, log=None):
+    """Composed cost of tess_unit with `params` (tess_unit parameter -> value). Synthesizes the
+    records the cache lacks (or raises CostError naming them with require_cached)."""
+    defaults = package_defaults(rtl_dir)
+    params = {k: int(v) for k, v in params.items() if int(v) != defaults.get(k)}
+    yosys = yosys_version()
+    cache = Path(cache)
+    with tempfile.TemporaryDirectory(prefix="tessim-cost-") as tmp:
+        modules = elaborate(rtl_dir, params, tmp)
+        top = top_name(modules)
+        counts = instance_counts(modules, top)
+        texts = {name: record_text(modules, name) for name in counts}
+        keys = {name: record_key(texts[name][0], yosys, xilinx) for name in counts}
+        records, missing = {}, []
+        for name in counts:
+            path = cache / f"{keys[name]}.json"
+            if path.exists():
+                records[name] = json.loads(path.read_text())["result"]
+            else:
+                missing.append(name)
+        if missing and require_cached:
+            raise CostError("no recorded cost for " + ", ".join(sorted(modules[n].base for n in missing)))
+
+        def work(name):
+            with tempfile.TemporaryDirectory(prefix="tessim-record-") as rec_tmp:
+                result = synthesize_record(name, *texts[name], xilinx, rec_tmp)
+            record = {"schema": RECORD_SCHEMA, "module": modules[name].base, "derived": name,
+                      "yosys": yosys, "xilinx": xilinx, "result": result}
+            cache.mkdir(parents=True, exist_ok=True)
+            path = cache / f"{keys[name]}.json"
+            partial = path.with_suffix(".json.tmp")
+            partial.write_text(json.dumps(record, indent=1) + "\n")
+            partial.replace(path)
+            if log:
+                print(f"  {modules[name].base:<14} {result['transistors']:>9} transistors, depth {result['depth']:>3}"
+                      f" ({result['seconds']} s)", file=log, flush=True)
+            return name, result
+
+        # Largest first keeps both Yosys processes busy to the end.
+        order = sorted(missing, key=lambda n: -len(texts[n][0]))
+        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+            for name, result in pool.map(work, order):
+                records[name] = result
+
+        blocks = {}
+        for block in BLOCKS:
+            owner = next(n for n in counts if modules[n].base == block)
+            sub = instance_counts(modules, owner)
+            blocks[block] = compose(records, sub)
+            blocks[block]["depth"], blocks[block]["critical_path"] = composed_depth(modules, records, owner)
+        per_record = [{"module": modules[n].base, "derived": n, "instances": counts[n], "key": keys[n],
+                       **{k: records[n][k] for k in ("cells", "flops", "transistors", "depth")}}
+                      for n in sorted(counts, key=lambda n: (modules[n].base, n))]
+        return {"yosys": yosys, "params": params, "blocks": blocks, "records": per_record,
+                "synthesized": len(missing),
+                "seconds": round(sum(records[n].get("seconds", 0) for n in counts), 1)}
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(prog="yosys_cost.py", description=__doc__.split("\n\n")[0])
+    ap.add_argument("-chparam", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
+                    help="a tess_unit parameter (default: tess_pkg's)")
+    ap.add_argument("--cache", default=str(REPO / "docs" / "results" / "costs" / "modules"),
+                    help="record directory (default: docs/results/costs/modules)")
+    ap.add_argument("--rtl", default=str(REPO / "rtl"), help="RTL directory with tess.f")
+    ap.add_argument("--jobs", type=int, default=2, help="Yosys processes in parallel")
+    ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx")
+    ap.add_argument("--require-cached", action="store_true", help="synthesize nothing; fail if a record is missing")
+    ap.add_argument("--json", help="write the result as JSON (- for stdout)")
+    ap.add_argument("--compare-flat", action="store_true",
+                    help="also synthesize the unit flattened (scripts/synth.sh) and print the composition's error")
+    args = ap.parse_args(argv)
+    for name, value in args.chparam:
+        if not value.isdigit():
+            ap.error(f"-chparam {name}: '{value}' is not a non-negative integer")
+    defaults = package_defaults(args.rtl)
+    unknown = [n for n, _ in args.chparam if n not in defaults]
+    if unknown:
+        ap.error(f"tess_pkg has no parameter {', '.join(unknown)}")
+    start = time.monotonic()
+    try:
+        result = cost(dict(args.chparam), args.cache, args.rtl, args.jobs, not args.no_xilinx,
+                      args.require_cached, log=sys.stderr)
+    except CostError as e:
+        print(f"yosys_cost.py: error: {e}", file=sys.stderr)
+        return 1
+    elapsed = time.monotonic() - start
+    if args.json:
+        text = json.dumps(result, indent=2)
+        if args.json == "-":
+            print(text)
+            return 0
+        Path(args.json).write_text(text + "\n")
+    over = " ".join(f"{k}={v}" for k, v in result["params"].items()) or "defaults"
+    print(f"tess_unit ({over}): {result['synthesized']} records synthesized, {elapsed:.0f} s")
+    print(f"{'block':<10} {'cells':>8} {'flops':>7} {'transistors':>12} {'depth':>6}")
+    for block, e in result["blocks"].items():
+        print(f"{block:<10} {e['cells']:>8} {e['flops']:>7} {e['transistors']:>12} {e['depth']:>6}")
+    print("deepest path of tess_unit (gates so far, at each boundary it crosses):")
+    for where, gates in result["blocks"]["tess_unit"]["critical_path"]:
+        print(f"  {gates:>4}  {where}")
+    print(f"{'record':<14} {'inst':>4} {'transistors':>12} {'depth':>6}")
+    for r in result["records"]:
+        print(f"{r['module']:<14} {r['instances']:>4} {r['transistors']:>12} {r['depth']:>6}")
+    if args.compare_flat:
+        return compare_flat(result, args)
+    return 0
+
+
+def compare_flat(result, args):
+    """Synthesizes the same configuration flattened (scripts/synth.sh) and prints composed against
+    flat for every block and figure, with the relative error of the composition."""
+    with tempfile.TemporaryDirectory(prefix="tessim-flat-") as tmp:
+        out = Path(tmp) / "flat.json"
+        cmd = ["bash", str(REPO / "scripts" / "synth.sh"), "--json", str(out), "--jobs", str(args.jobs)]
+        for name, value in result["params"].items():
+            cmd += ["-chparam", name, str(value)]
+        if args.no_xilinx:
+            cmd.append("--no-xilinx")
+        proc = subprocess.run(cmd, capture_output=True, text=True)
+        if proc.returncode != 0:
+            print(f"yosys_cost.py: error: synth.sh failed:\n{proc.stderr.strip()}", file=sys.stderr)
+            return 1
+        flat = json.loads(out.read_text())
+    print(f"composed against flattened ({flat['seconds']} s flat):")
+    print(f"{'block':<10} {'figure':<12} {'composed':>10} {'flat':>10} {'error':>8}")
+    for block, composed in result["blocks"].items():
+        reference = flat["blocks"].get(block)
+        if not reference:
+            continue
+        figures = [(k, composed[k], reference[k]) for k in ("transistors", "cells", "flops", "depth")]
+        figures += [(f"xilinx_{k}", v, reference["xilinx"][k]) for k, v in composed.get("xilinx", {}).items()
+                    if k in ("lut", "ff", "dsp")]
+        for name, c, f in figures:
+            error = f"{100.0 * (c - f) / f:+.2f} %" if f else "-"
+            print(f"{block:<10} {name:<12} {c:>10} {f:>10} {error:>8}")
+    if args.json and args.json != "-":
+        data = json.loads(Path(args.json).read_text())
+        data["flat"] = flat["blocks"]
+        Path(args.json).write_text(json.dumps(data, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
