@@ -1,0 +1,132 @@
+#!/usr/bin/python3
+"""Properties of the per-module cost records (scripts/yosys_cost.py, docs/rtl.md Cost method):
+
+1. A record's key depends on its module alone: a comment added to tess_fifo.sv changes no key;
+   a real edit of tess_fifo.sv changes the keys of the FIFO records and of nothing else.
+2. The boundary paths of a synthesized record reproduce Yosys's own `ltp -noff` depth.
+3. The longest path through the hierarchy joins a parent's paths to its children's at their ports,
+   keeps output ports per bit, and finds the path the records imply.
+4. Whole-unit figures are the records' figures times their instance counts.
+"""
+
+import json
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "scripts"))
+import yosys_cost  # noqa: E402
+
+failures = []
+
+
+def check(what, ok, detail=""):
+    print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail and not ok else ''}")
+    if not ok:
+        failures.append(what)
+
+
+def keys_of(rtl_dir, work):
+    modules = yosys_cost.elaborate(rtl_dir, {}, work)
+    top = yosys_cost.top_name(modules)
+    counts = yosys_cost.instance_counts(modules, top)
+    return {name: (modules[name].base, yosys_cost.record_key(yosys_cost.record_text(modules, name)[0], "v", True))
+            for name in counts}
+
+
+def test_keys(tmp):
+    base = keys_of(ROOT / "rtl", tmp)
+    commented = Path(tmp) / "commented"
+    shutil.copytree(ROOT / "rtl", commented)
+    fifo = commented / "tess_fifo.sv"
+    fifo.write_text("// a comment that moves every line of the file\n\n" + fifo.read_text())
+    check("a comment in tess_fifo.sv changes no record key", keys_of(commented, tmp) == base)
+
+    edited = Path(tmp) / "edited"
+    shutil.copytree(ROOT / "rtl", edited)
+    fifo = edited / "tess_fifo.sv"
+    text = fifo.read_text()
+    # Rename one of the FIFO's registers: a real change of the elaborated module.
+    register = re.search(r"\b(\w+_q)\b", text).group(1)
+    fifo.write_text(re.sub(rf"\b{register}\b", register + "_renamed", text))
+    after = keys_of(edited, tmp)
+    changed = {base[n][0] for n in base if base[n] != after.get(n)}
+    check("an edit of tess_fifo.sv changes the FIFO records' keys and no other",
+          changed == {"tess_fifo"}, f"changed: {sorted(changed)}")
+    fifo_records = sum(1 for n in base if base[n][0] == "tess_fifo")
+    check("the unit has two FIFO records (TRI and VTX widths differ)", fifo_records == 2, str(fifo_records))
+
+
+def test_paths_match_ltp(tmp):
+    modules = yosys_cost.elaborate(ROOT / "rtl", {}, tmp)
+    name = next(n for n, m in modules.items() if m.base == "tess_div")
+    text, boxes = yosys_cost.record_text(modules, name)
+    check("tess_div has no submodule records", boxes == [])
+    result = yosys_cost.synthesize_record(name, text, boxes, False, tmp)
+    deepest = max(g for _, _, g in result["paths"])
+    check("a record's deepest boundary path is Yosys's ltp depth", deepest == result["depth"],
+          f"paths {deepest}, ltp {result['depth']}")
+    kinds = {src.split(":")[0] for src, _, _ in result["paths"]}
+    check("its paths start at inputs and flip-flops", kinds == {"in", "reg"}, str(kinds))
+
+
+class FakeModule:
+    def __init__(self, base, instances):
+        self.base = base
+        self.instances = instances
+
+
+def test_composed_depth():
+    # parent: input a -> 3 gates -> child c1 port x; child output y bit 0 (5 gates deep from x) and
+    # bit 1 (40 gates deep from x); the parent reads y[0] into 7 gates to a register and y[1]
+    # into 1 gate to its output. Longest: 3 + 40 + 1 = 44, not 3 + 40 + 7 (y[0] is shallow).
+    modules = {"P": FakeModule("parent", {"c1": "C"}), "C": FakeModule("child", {})}
+    records = {
+        "P": {"paths": [["in:a", "box:c1.x", 3], ["box:c1.y[0]", "reg", 7], ["box:c1.y[1]", "out:o[0]", 1],
+                        ["reg", "reg", 20]]},
+        "C": {"paths": [["in:x", "out:y[0]", 5], ["in:x", "out:y[1]", 40], ["reg", "out:y[0]", 2]]},
+    }
+    depth, path = yosys_cost.composed_depth(modules, records, "P")
+    check("composed depth follows the bits a parent reads", depth == 44, f"{depth}")
+    check("the critical path names the child's ports",
+          [p for p, _ in path] == [" in:a", "/c1 in:x", "/c1 out:y[1]", " out:o[0]"], str(path))
+    # A second instance of the child deepens nothing, and its paths are its own.
+    modules["P"].instances["c2"] = "C"
+    records["P"]["paths"] += [["box:c1.y[0]", "box:c2.x", 30], ["box:c2.y[1]", "out:o[1]", 0]]
+    depth, _ = yosys_cost.composed_depth(modules, records, "P")
+    check("paths chain through two instances", depth == 3 + 5 + 30 + 40, f"{depth}")
+
+
+def test_compose_sums():
+    records = {"A": {"cells": 10, "flops": 2, "transistors": 100, "transistors_exact": True, "depth": 4,
+                     "xilinx": {"lut": 5, "ff": 2}},
+               "B": {"cells": 3, "flops": 0, "transistors": 30, "transistors_exact": True, "depth": 9,
+                     "xilinx": {"lut": 1, "ff": 0}}}
+    total = yosys_cost.compose(records, {"A": 1, "B": 4})
+    check("figures add over instances", (total["cells"], total["flops"], total["transistors"]) == (22, 2, 220),
+          str(total))
+    check("Xilinx cells add over instances", total["xilinx"] == {"lut": 9, "ff": 2}, str(total["xilinx"]))
+
+
+def main():
+    if not shutil.which("yosys"):
+        print("yosys_cost_test: yosys not found", file=sys.stderr)
+        return 1
+    with tempfile.TemporaryDirectory(prefix="yosys-cost-test-") as tmp:
+        test_keys(tmp)
+        test_paths_match_ltp(tmp)
+    test_composed_depth()
+    test_compose_sums()
+    if failures:
+        print(f"yosys_cost_test: {len(failures)} failed", file=sys.stderr)
+        return 1
+    print("yosys_cost_test: all passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
