@@ -393,30 +393,41 @@ def composed_depth(modules, records, top):
     """Longest path through the hierarchy under `top`, from every record's port-level paths:
     a black-box pin of a parent is the child's port."""
     edges = {}  # node -> [(node, gates)]
-    nodes = set()
 
     def node(path, tag):
         return f"{path}|{tag}"
 
-    def expand(name, path):
-        for src, sink, gates in records[name]["paths"]:
-            a = node(path, "reg>" if src == "reg" else src)
-            b = node(path, "reg<" if sink == "reg" else sink)
-            edges.setdefault(a, []).append((b, gates))
-            nodes.update((a, b))
-        for inst, child in modules[name].instances.items():
-            if is_inline(modules[child]):
-                continue
-            sub = f"{path}/{inst}"
-            prefix = f"box:{inst}."
-            for src, sink, _ in records[name]["paths"]:
-                if src.startswith(prefix):  # an output bit of the child feeds the parent
-                    edges.setdefault(node(sub, "out:" + src[len(prefix):]), []).append((node(path, src), 0))
-                if sink.startswith(prefix):  # the parent drives an input port of the child
-                    edges.setdefault(node(path, sink), []).append((node(sub, "in:" + sink[len(prefix):]), 0))
-            expand(child, sub)
+    hubs = [0]
 
+    def expand(name, path):
+        children = {inst: f"{path}/{inst}" for inst, child in modules[name].instances.items()
+                    if not is_inline(modules[child])}
+        for src, sink, gates in records[name]["paths"]:
+            sources = [node(path, "reg>" if t == "reg" else t) for t in bits_of(src)]
+            sinks = [node(path, "reg<" if t == "reg" else t) for t in bits_of(sink)]
+            if len(sources) > 1 and len(sinks) > 1:  # every pair: through one hub, not a product
+                hubs[0] += 1
+                hub = f"hub{hubs[0]}"
+                for a in sources:
+                    edges.setdefault(a, []).append((hub, 0))
+                sources = [hub]
+            for a in sources:
+                edges.setdefault(a, []).extend((b, gates) for b in sinks)
+            for t in bits_of(src):  # an output bit of a child feeds the parent
+                if t.startswith("box:"):
+                    inst, port = t[4:].rsplit(".", 1)
+                    joins.add((node(children[inst], "out:" + port), node(path, t)))
+            if sink.startswith("box:"):  # the parent drives an input port of a child
+                inst, port = sink[4:].rsplit(".", 1)
+                joins.add((node(path, sink), node(children[inst], "in:" + port)))
+        for inst, child in modules[name].instances.items():
+            if inst in children:
+                expand(child, children[inst])
+
+    joins = set()
     expand(top, "")
+    for a, b in joins:
+        edges.setdefault(a, []).append((b, 0))
     indegree = {}
     for a, outs in edges.items():
         indegree.setdefault(a, 0)
@@ -448,6 +459,83 @@ def composed_depth(modules, records, top):
     # Where the path crosses a boundary, with the gates counted up to there.
     return longest[end], [[n.replace("|", " "), longest[n]] for n in reversed(path)
                           if not n.split("|", 1)[1].startswith("box:")]
+
+
+INDEXED = re.compile(r"^(.*)\[(\d+)(?::(\d+))?\]$")
+
+
+def bits_of(tag):
+    """The tags one tag stands for: "out:P[3:5]" is out:P[3], out:P[4], out:P[5]."""
+    m = INDEXED.match(tag)
+    if not m or m.group(3) is None:
+        return [tag]
+    return [f"{m.group(1)}[{i}]" for i in range(int(m.group(2)), int(m.group(3)) + 1)]
+
+
+def compress_paths(paths):
+    """The same set of paths with runs of consecutive bits written as one range (lossless: a row
+    S -> R stands for every pair of S x R, and is only formed where every pair is a path)."""
+    def split(tag):
+        m = INDEXED.match(tag)
+        return (m.group(1), int(m.group(2))) if m and m.group(3) is None else (tag, None)
+
+    def runs(indices):
+        indices = sorted(indices)
+        start = prev = indices[0]
+        for i in indices[1:] + [None]:
+            if i is not None and i == prev + 1:
+                prev = i
+                continue
+            yield start, prev
+            if i is not None:
+                start = prev = i
+
+    def name(base, lo, hi):
+        if lo is None:
+            return base
+        return f"{base}[{lo}]" if lo == hi else f"{base}[{lo}:{hi}]"
+
+    expanded = [(b, s, g) for src, sink, g in paths for a in bits_of(src) for b in [a] for s in bits_of(sink)]
+    # Sinks first: each source bit's run of sink bits of one port at one depth.
+    by_source = {}
+    for src, sink, g in expanded:
+        base, i = split(sink)
+        by_source.setdefault((src, base, g, i is None), []).append(i)
+    rows = []
+    for (src, base, g, whole), indices in by_source.items():
+        for lo, hi in ([(None, None)] if whole else runs(indices)):
+            rows.append((src, name(base, lo, hi), g))
+    # Then sources: runs of source bits that reach the same sinks at the same depth.
+    by_sink = {}
+    for src, sink, g in rows:
+        base, i = split(src)
+        by_sink.setdefault((base, sink, g, i is None), []).append(i)
+    out = []
+    for (base, sink, g, whole), indices in by_sink.items():
+        for lo, hi in ([(None, None)] if whole else runs(indices)):
+            out.append([name(base, lo, hi), sink, g])
+    return sorted(out)
+
+
+def write_record(path, record):
+    """A record as JSON, its boundary paths (most of it) compressed and one to a line."""
+    record = json.loads(json.dumps(record))
+    paths = compress_paths(record["result"].pop("paths"))
+    text = json.dumps(record, indent=1)
+    text = text[:text.rindex("}")].rstrip() + ',\n "paths": [\n'
+    text += ",\n".join("  " + json.dumps(p) for p in paths) + "\n ]\n}\n"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    partial = path.with_name(path.name + ".tmp")
+    partial.write_text(text)
+    partial.replace(path)
+
+
+def read_record(path):
+    record = json.loads(Path(path).read_text())
+    result = record["result"]
+    if "paths" in record:
+        result["paths"] = record["paths"]
+    return result
 
 
 ADDITIVE = ("cells", "flops", "transistors")
@@ -491,7 +579,7 @@ def cost(params, cache, rtl_dir=REPO / "rtl", jobs=2, xilinx=True, require_cache
         for name in counts:
             path = cache / f"{keys[name]}.json"
             if path.exists():
-                records[name] = json.loads(path.read_text())["result"]
+                records[name] = read_record(path)
             else:
                 missing.append(name)
         if missing and require_cached:
@@ -500,13 +588,9 @@ def cost(params, cache, rtl_dir=REPO / "rtl", jobs=2, xilinx=True, require_cache
         def work(name):
             with tempfile.TemporaryDirectory(prefix="tessim-record-") as rec_tmp:
                 result = synthesize_record(name, *texts[name], xilinx, rec_tmp)
-            record = {"schema": RECORD_SCHEMA, "module": modules[name].base, "derived": name,
-                      "yosys": yosys, "xilinx": xilinx, "result": result}
-            cache.mkdir(parents=True, exist_ok=True)
-            path = cache / f"{keys[name]}.json"
-            partial = path.with_suffix(".json.tmp")
-            partial.write_text(json.dumps(record, indent=1) + "\n")
-            partial.replace(path)
+            write_record(cache / f"{keys[name]}.json",
+                         {"schema": RECORD_SCHEMA, "module": modules[name].base, "derived": name, "yosys": yosys,
+                          "xilinx": xilinx, "result": result})
             if log:
                 print(f"  {modules[name].base:<14} {result['transistors']:>9} transistors, depth {result['depth']:>3}"
                       f" ({result['seconds']} s)", file=log, flush=True)

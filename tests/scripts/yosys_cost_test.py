@@ -73,6 +73,16 @@ def test_paths_match_ltp(tmp):
     kinds = {src.split(":")[0] for src, _, _ in result["paths"]}
     check("its paths start at inputs and flip-flops", kinds == {"in", "reg"}, str(kinds))
 
+    def pairs(paths):
+        return {(a, b, g) for s, t, g in paths for a in yosys_cost.bits_of(s) for b in yosys_cost.bits_of(t)}
+    stored = yosys_cost.compress_paths(result["paths"])
+    check("stored paths (bit runs as ranges) stand for exactly the measured ones",
+          pairs(stored) == pairs(result["paths"]) and len(stored) < len(result["paths"]),
+          f"{len(result['paths'])} -> {len(stored)}")
+    record = Path(tmp) / "record.json"
+    yosys_cost.write_record(record, {"module": "tess_div", "result": result})
+    check("a record reads back as written", yosys_cost.read_record(record)["paths"] == stored)
+
 
 class FakeModule:
     def __init__(self, base, instances):
