@@ -37,7 +37,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
-RECORD_SCHEMA = 1
+RECORD_SCHEMA = 2
 # Leaf modules synthesized inside their parents rather than as records of their own.
 INLINE = ("tess_sat", "tess_dpg_place")
 TOP = "tess_unit"
@@ -117,7 +117,9 @@ class Module:
         self.instances = {}  # cell name -> module, for those cells
 
 
-AUTO_NAME = re.compile(r"(?<!\S)\$(?!paramod)[^\s$]*\$\S*")
+AUTO_NAME = re.compile(r"(?<!\S)\$(?!paramod)[^\s$]*\$\S*")  # $add$file:line$N_Y, $procmux$N, ...
+SOURCE_IN_NAME = re.compile(r"\$/[^$\s]*")  # the file:line part of an automatic name
+COUNTER = re.compile(r"\$(\d+)")  # Yosys's global counter in an automatic name
 
 
 def parse_rtlil(text):
@@ -158,16 +160,45 @@ def parse_rtlil(text):
 
 
 def normalized(module):
-    """The module's text with automatic names ($add$file:line$N ...) numbered in order of appearance,
-    so that its text depends on the module alone, not on where it sits in the elaboration."""
-    names = {}
+    """The module's text as it depends on the module alone: automatic names lose their file:line
+    and their global counter becomes its rank within the module (the counter's offset depends on
+    what Yosys elaborated before), and declarations are sorted (the dump's order follows the
+    original names)."""
+    tokens = {t for line in module.body for t in AUTO_NAME.findall(line)}
+    counters = sorted({int(n) for t in tokens for n in COUNTER.findall(SOURCE_IN_NAME.sub("", t))})
+    rank = {n: i for i, n in enumerate(counters)}
 
     def rename(match):
-        return names.setdefault(match.group(0), f"$auto${len(names)}")
+        name = SOURCE_IN_NAME.sub("$", match.group(0))
+        return COUNTER.sub(lambda m: f"${rank[int(m.group(1))]}", name)
 
+    entities = []  # (kind, sort key, lines): attributes stay with what they describe
+    pending = []
+    cell, cell_key = None, None
+    for raw in module.body:
+        line = AUTO_NAME.sub(rename, raw)
+        if cell is not None:
+            cell.append(line)
+            if line == "end":
+                entities.append((3, cell_key, cell))
+                cell = None
+            continue
+        if line.startswith("attribute "):
+            pending.append(line)
+            continue
+        kind = {"parameter": 0, "wire": 1, "memory": 2, "cell": 3, "connect": 4}.get(line.split(" ", 1)[0], 5)
+        if kind == 3:
+            cell = pending + [line]
+            cell_key = line
+            pending = []
+            continue
+        entities.append((kind, line, pending + [line]))
+        pending = []
+    entities.sort(key=lambda e: (e[0], e[1]))
     lines = module.attributes + [f"module {module.name}"]
-    lines += [AUTO_NAME.sub(rename, line) for line in module.body]
-    lines.append("end")
+    for _, _, entity in entities:
+        lines += entity
+    lines += pending + ["end"]
     return "\n".join(lines) + "\n"
 
 

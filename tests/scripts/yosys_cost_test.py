@@ -2,7 +2,8 @@
 """Properties of the per-module cost records (scripts/yosys_cost.py, docs/rtl.md Cost method):
 
 1. A record's key depends on its module alone: a comment added to tess_fifo.sv changes no key;
-   a real edit of tess_fifo.sv changes the keys of the FIFO records and of nothing else.
+   a real edit of tess_fifo.sv changes the keys of the FIFO records and of nothing else; another
+   N or CPG variant shares every record it does not change.
 2. The boundary paths of a synthesized record reproduce Yosys's own `ltp -noff` depth.
 3. The longest path through the hierarchy joins a parent's paths to its children's at their ports,
    keeps output ports per bit, and finds the path the records imply.
@@ -59,6 +60,27 @@ def test_keys(tmp):
           changed == {"tess_fifo"}, f"changed: {sorted(changed)}")
     fifo_records = sum(1 for n in base if base[n][0] == "tess_fifo")
     check("the unit has two FIFO records (TRI and VTX widths differ)", fifo_records == 2, str(fifo_records))
+
+
+def test_records_shared_between_configurations(tmp):
+    base = keys_of(ROOT / "rtl", tmp)
+
+    def keys_with(params):
+        modules = yosys_cost.elaborate(ROOT / "rtl", params, tmp)
+        counts = yosys_cost.instance_counts(modules, yosys_cost.top_name(modules))
+        return {(modules[n].base, yosys_cost.record_key(yosys_cost.record_text(modules, n)[0], "v", True))
+                for n in counts}
+
+    def differing(params):
+        other = keys_with(params)
+        return sorted({module for module, key in set(base.values()) ^ other})
+
+    # What Yosys elaborated before a module must not change its record.
+    check("another CPG variant changes only the CPG's records and the top",
+          differing({"CpgDigitBits": 2}) == ["tess_cpg", "tess_cpg_edge", "tess_div", "tess_isqrt", "tess_unit"],
+          str(differing({"CpgDigitBits": 2})))
+    check("another N changes only the TE's record and the top",
+          differing({"IntBlocks": 3}) == ["tess_te", "tess_unit"], str(differing({"IntBlocks": 3})))
 
 
 def test_paths_match_ltp(tmp):
@@ -128,6 +150,7 @@ def main():
         return 1
     with tempfile.TemporaryDirectory(prefix="yosys-cost-test-") as tmp:
         test_keys(tmp)
+        test_records_shared_between_configurations(tmp)
         test_paths_match_ltp(tmp)
     test_composed_depth()
     test_compose_sums()
