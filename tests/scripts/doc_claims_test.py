@@ -1,12 +1,18 @@
 #!/usr/bin/env python3
 """Numbers the docs state about the project's own data, checked against that data, so that a
-claim cannot drift when the data changes: the mutants in the campaign, the Verilated builds CI
-makes, the runs of the bad-input campaign."""
+claim cannot drift when the data changes: the mutants in the campaign (and in each round of it),
+the Verilated builds CI makes, the runs of the bad-input campaign, the points of the sweeps, the
+functional-coverage bins and the builds of the CPG variant matrix. A count in README.md or docs/
+of one of these is either checked here or not stated."""
 import argparse
+import ast
+import csv
 import json
+import os
 import re
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -20,6 +26,149 @@ def claim(path: str, pattern: str) -> str:
     if len(found) != 1:
         raise SystemExit(f"doc_claims_test: {path}: expected one match of {pattern!r}, found {len(found)}")
     return found[0]
+
+
+def number(text: str) -> int:
+    """A count as the docs write it: '1 960', '1,960' or '1960'."""
+    return int(re.sub(r"[\s,\u2009\u202f]", "", text))
+
+
+def section(path: str, heading: str) -> str:
+    text = (ROOT / path).read_text()
+    start = text.index(heading)
+    end = text.find("\n## ", start + len(heading))
+    return text[start:end if end >= 0 else len(text)]
+
+
+def mutant_rounds(check):
+    """Each round of the mutation campaign states the campaign's size after it; that size must be
+    the number of mutants of mutants.json named up to the end of that paragraph, and every mutant
+    must be named."""
+    ids = [m["id"] for m in json.loads((ROOT / "scripts/mutants/mutants.json").read_text())["mutants"]]
+    text = section("docs/verification.md", "## Mutation campaign")
+    named = lambda upto: {i for i in ids if re.search(rf"\b{i}\b", text[:upto])}
+    for m in re.finditer(r"\*\*(\d+) mutants:|brought\s+the\s+campaign\s+to\s+(\d+)\s+mutants|campaign\s+holds\s+(\d+)\s+mutants", text):
+        stated = int(next(g for g in m.groups() if g))
+        end = text.find("\n\n", m.end())  # the paragraph that states the size names the round's own
+        check(f"mutants named up to '{' '.join(m.group(0).split())}' (verification.md)", stated,
+              len(named(end if end >= 0 else len(text))))
+    check("mutants of mutants.json named in verification.md", len(ids), len(named(len(text))))
+    listed = set(re.findall(r"^\| ([a-z][a-z0-9]*(?:_[a-z0-9]+)+) \|", text, re.M))
+    check("mutants in verification.md's tables that mutants.json lacks", [], sorted(listed - set(ids)))
+    check("mutants in the campaign (README.md)",
+          int(claim("README.md", r"mutation campaign: (\d+) single-point bugs")), len(ids))
+
+
+def sweep_points(check):
+    """The points of scripts/sweeps/*.json (as sweep.py expands them), their committed results, and
+    the counts README.md, load-balancing.md and the specs' descriptions state."""
+    sys.path.insert(0, str(ROOT / "scripts"))
+    import sweep  # noqa: E402  (the spec expansion sweep.py runs)
+
+    def points(name):
+        spec_path = ROOT / "scripts/sweeps" / f"{name}.json"
+        spec = json.loads(spec_path.read_text())
+        return spec, sweep.expand(spec, spec_path.parent)
+
+    small_spec, small = points("small")
+    full_spec, full = points("full")
+    _, adaptive = points("adaptive")
+    cpg_grids = {"cpg", "cpg_adaptive", "cpg_fast"}
+    study = [(p, g) for p, g in small if not cpg_grids & set(g)]
+    for name, pts, csv_path in (("small", small, "docs/results/results.csv"),
+                                ("full", full, "docs/results/full/results.csv"),
+                                ("adaptive", adaptive, "docs/results/adaptive/results.csv")):
+        with open(ROOT / csv_path, newline="") as f:
+            check(f"rows of {csv_path} against the points of {name}.json", len(pts), sum(1 for _ in csv.DictReader(f)))
+
+    readme = "README.md"
+    check("small sweep points (README.md)", number(claim(readme, r"the small sweep \(([\d ,]+) points\)")), len(small))
+    check("full sweep points (README.md)", number(claim(readme, r"`--full` \(([\d ,]+) points")), len(full))
+    check("adaptive sweep points (README.md)", number(claim(readme, r"`--adaptive` \(([\d ,]+) points\)")),
+          len(adaptive))
+
+    lb = "docs/results/load-balancing.md"
+    check("small set points timed (load-balancing.md)",
+          number(claim(lb, r"the ([\d ,]+) points with a built tessim")), len(small))
+    total, in_study, in_adaptive, in_cpg = claim(
+        lb, r"CI run: ([\d ,]+)\s+points, ([\d ,]+) of them in the grids of §1–§10 \(([\d ,]+) of these adaptive\)"
+            r"\s+and ([\d ,]+) in the CPG-variant")
+    check("small set points (load-balancing.md)", number(total), len(small))
+    check("small set points outside the CPG grids (load-balancing.md)", number(in_study), len(study))
+    check("adaptive points among them (load-balancing.md)", number(in_adaptive),
+          sum("camera" in p for p, _ in study))
+    check("points of the CPG-variant grids (load-balancing.md)", number(in_cpg), len(small) - len(study))
+    check("points of grids cpg and cpg_fast (load-balancing.md)",
+          number(claim(lb, r"predicts the ([\d ,]+) points of the grids\s+`cpg` and `cpg_fast`")),
+          sum(bool({"cpg", "cpg_fast"} & set(g)) for _, g in small))
+    check("full set points (load-balancing.md)", number(claim(lb, r"The full set \(([\d ,]+) points\)")), len(full))
+    check("full set points, model versus simulation (load-balancing.md)",
+          number(claim(lb, r"On the ([\d ,]+) points of the full set")), len(full))
+    with open(ROOT / "docs/results/full/results.csv", newline="") as f:
+        err = [abs(float(r["analytic.run_cycles"]) - float(r["cycles"])) / float(r["cycles"]) for r in csv.DictReader(f)]
+    close, near = claim(lb, r"simulated cycles on ([\d ,]+) points and within 1 % on\s+([\d ,]+)\.")
+    check("full set points within 0.1 % of the model (load-balancing.md)", number(close), sum(e <= 1e-3 for e in err))
+    check("full set points within 1 % of the model (load-balancing.md)", number(near), sum(e <= 1e-2 for e in err))
+    check("full set points beyond 1 % (load-balancing.md)",
+          number(claim(lb, r"TE with few contexts and N ≥ 3\*\* \(([\d ,]+) points")), sum(e > 1e-2 for e in err))
+
+    d = small_spec["description"]
+    study_n, adaptive_n = re.search(r"([\d,]+) points \(([\d,]+) of them adaptive", d).groups()
+    check("small.json description: points outside the CPG grids", number(study_n), len(study))
+    check("small.json description: adaptive among them", number(adaptive_n), sum("camera" in p for p, _ in study))
+    check("small.json description: CPG-variant points",
+          number(re.search(r"([\d,]+) more points", d).group(1)), len(small) - len(study))
+    check("small.json description: points", number(re.search(r"\): ([\d,]+) points", d).group(1)), len(small))
+    check("full.json description: points",
+          number(re.search(r"([\d,]+) points;", full_spec["description"]).group(1)), len(full))
+
+
+def coverage_bins(check, tessim):
+    """The bins scripts/coverage.sh declares: the campaign run with every random stream cut to one
+    triangle (the bins a run declares depend on its configuration only, not on its length)."""
+    probe = subprocess.run([tessim, "cosim", "--help"], capture_output=True, text=True)
+    if probe.returncode != 0:
+        print(f"coverage bins: not checked, this tessim has no co-simulation: {probe.stderr.strip()}")
+        return
+    with tempfile.TemporaryDirectory() as tmp:
+        wrapper = Path(tmp) / "tessim"
+        wrapper.write_text(f"#!{sys.executable}\n"
+                           "import os, sys\n"
+                           "args = sys.argv[1:]\n"
+                           "for i, a in enumerate(args[:-1]):\n"
+                           "    if a == '--random':\n"
+                           "        args[i + 1] = '1'\n"
+                           f"os.execv({tessim!r}, [{tessim!r}] + args)\n")
+        wrapper.chmod(0o755)
+        out = Path(tmp) / "coverage.json"
+        subprocess.run(["bash", str(ROOT / "scripts/coverage.sh"), str(out)], check=True, stdout=subprocess.DEVNULL,
+                       env=dict(os.environ, TESSIM=str(wrapper)))
+        bins = json.loads(out.read_text())["total"]
+    covered, total = claim("docs/verification.md", r"\*\*(\d+) of (\d+) bins\*\*")
+    check("bins of the coverage campaign (verification.md)", int(total), bins)
+    check("bins the coverage campaign hit (verification.md: all)", int(covered), int(total))
+    check("bins of the coverage campaign (README.md)", int(claim("README.md", r"hits all (\d+) bins")), bins)
+
+
+def cpg_matrix_builds(check):
+    """The builds scripts/cpg_matrix.py makes by default: edge lanes × digit bits × N."""
+    defaults = {}
+    for node in ast.walk(ast.parse((ROOT / "scripts/cpg_matrix.py").read_text())):
+        if isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "add_argument":
+            for k in node.keywords:
+                if k.arg == "default" and isinstance(k.value, ast.List):
+                    defaults[node.args[0].value] = ast.literal_eval(k.value)
+    lanes, digits, blocks = defaults["--lanes"], defaults["--digit-bits"], defaults["--int"]
+    variants = len(lanes) * len(digits)
+    check("CPG variant × N builds (README.md)", int(claim("README.md", r"\((\d+) RTL builds in a tree of their own\)")),
+          variants * len(blocks))
+    stated, ec, r = claim("docs/verification.md", r"is (\d+) builds \(Ec ∈ \{([\d, ]+)\} × r ∈ \{([\d, ]+)\} × N = 1\.\.4\)")
+    check("CPG variant × N builds (verification.md)", int(stated), variants * len(blocks))
+    check("edge lanes of the matrix (verification.md)", [int(x) for x in ec.split(",")], lanes)
+    check("digit bits of the matrix (verification.md)", [int(x) for x in r.split(",")], digits)
+    check("N of the matrix (verification.md: 1..4)", [1, 2, 3, 4], blocks)
+    check("CPG variants at one N (verification.md)",
+          int(claim("docs/verification.md", r"r ∈ \{[\d, ]+\}, (\d+) builds\)")), variants)
 
 
 def main() -> int:
@@ -43,6 +192,10 @@ def main() -> int:
                            "--count"], capture_output=True, text=True, check=True).stdout.strip()
     check("runs of the bad-input campaign", int(claim("docs/verification.md", r"runs `tessim` (\d+) times")),
           int(runs))
+    mutant_rounds(check)
+    sweep_points(check)
+    coverage_bins(check, a.tessim)
+    cpg_matrix_builds(check)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
