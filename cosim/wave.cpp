@@ -14,6 +14,7 @@
 #include "model/error.hpp"
 #include "model/output_file.hpp"
 #include "sim/cpg.hpp"
+#include "sim/ports.hpp"
 
 extern char** environ;
 
@@ -96,10 +97,8 @@ std::filesystem::path gtkw_path(const std::filesystem::path& dump) {
 // The .gtkw layout of a dump (see wave.hpp).
 static std::string gtkw_text(const std::filesystem::path& dump, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
                       std::optional<std::uint64_t> marker) {
-  const int W = hw.format.coord_width();
-  const int B = hw.format.bary_bits;
   const int V = hw.te_contexts;
-  // Widths of the RTL's registers for this configuration (rtl/tess_cpg.sv, tess_te.sv, tess_fifo.sv).
+  // Widths of the RTL's internal registers for this configuration (rtl/tess_cpg.sv, tess_te.sv, tess_fifo.sv).
   // The CPG's counter holds C plus, with scalar tags, the longest tag pass (three tagged corners).
   sim::TriangleFx all_tagged;
   for (sim::TagsFx& t : all_tagged.tags) t.delta[0] = 1;
@@ -129,18 +128,27 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   auto hex = [&](const std::string& name, int width) { o << "@22\n" << name << range(width) << "\n"; };
   auto dec = [&](const std::string& name, int width) { o << "@24\n" << name << range(width) << "\n"; };
 
+  // Ports: their widths for this configuration (sim/ports.hpp).
+  auto port = [&](const char* name, bool as_hex = false) {
+    const sim::Port* p = sim::find_port(name);
+    if (!p) throw std::logic_error(std::string("wave layout: no port ") + name);
+    const int width = sim::width_bits(p->width, hw);
+    if (width == 1) return bit(top + name);
+    as_hex ? hex(top + name, width) : dec(top + name, width);
+  };
+
   group("clock, reset, mode");
-  bit(top + "clk_i");
-  bit(top + "rst_ni");
-  dec(top + "mode_i", 2);
-  dec(top + "perf_cycles_o", 64);
+  port("clk_i");
+  port("rst_ni");
+  port("mode_i");
+  port("perf_cycles_o");
   group("triangles in");
-  bit(top + "tri_valid_i");
-  bit(top + "tri_ready_o");
-  dec(top + "tri_id_i", 32);
-  dec(top + "tri_l_i", 7);
-  dec(top + "tri_pattern_i", 2);
-  hex(top + "tri_factors_i", 4 * 23);
+  port("tri_valid_i");
+  port("tri_ready_o");
+  port("tri_id_i");
+  port("tri_l_i");
+  port("tri_pattern_i");
+  port("tri_factors_i", true);
   dec(unit + "u_tri_fifo.count_q", clog2(static_cast<std::uint64_t>(hw.tri_fifo_depth) + 1));
   group("CPG");
   bit(unit + "u_cpg.accept");
@@ -155,7 +163,7 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   bit(unit + "u_cpbuf.wr_ptr_q");
   bit(unit + "u_cpbuf.rd_ptr_q");
   group("DPG (D3D11 walk: ring, edge, position)");
-  dec(unit + "u_te.u_dpg.index_q", 12);
+  dec(unit + "u_te.u_dpg.index_q", sim::pkg::kIndexBits);
   dec(unit + "u_te.u_dpg.ring_q", 6);
   dec(unit + "u_te.u_dpg.edge_q", 2);
   dec(unit + "u_te.u_dpg.p_q", 7);
@@ -168,19 +176,19 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   bit(unit + "u_te.te_blocked_o");
   group("vertices out");
   dec(unit + "u_vtx_fifo.count_q", clog2(static_cast<std::uint64_t>(hw.vtx_fifo_depth) + 1));
-  bit(top + "vtx_valid_o");
-  bit(top + "vtx_ready_i");
-  dec(top + "vtx_id_o", 32);
-  dec(top + "vtx_j_o", 7);
-  dec(top + "vtx_k_o", 7);
-  dec(top + "vtx_l_o", 7);
-  dec(top + "vtx_index_o", 12);
-  bit(top + "vtx_last_o");
-  hex(top + "vtx_u_o", B + 1);
-  hex(top + "vtx_v_o", B + 1);
-  hex(top + "vtx_pos_o", 3 * W);
-  hex(top + "vtx_nrm_o", 3 * W);
-  dec(top + "vtx_flags_o", 2);
+  port("vtx_valid_o");
+  port("vtx_ready_i");
+  port("vtx_id_o");
+  port("vtx_j_o");
+  port("vtx_k_o");
+  port("vtx_l_o");
+  port("vtx_index_o");
+  port("vtx_last_o");
+  port("vtx_u_o", true);
+  port("vtx_v_o", true);
+  port("vtx_pos_o", true);
+  port("vtx_nrm_o", true);
+  port("vtx_flags_o");
   return o.str();
 }
 

@@ -10,6 +10,8 @@
 #include "sim/error_bound.hpp"
 #include "sim/gpe.hpp"
 #include "sim/int_ops.hpp"
+#include "sim/ports.hpp"
+#include "sim/rtl_builds.hpp"
 #include "sim/simulate.hpp"
 #include "sim/unit.hpp"
 
@@ -304,6 +306,8 @@ nlohmann::json schema_json() {
       {"cpg_cycles", cpg_cycles_json},
       {"cpg_cycles_by_variant", cpg_variants_json},
       {"position_bound", position_bound_json},
+      {"interface", interface_json()},
+      {"rtl_builds", rtl_builds_json()},
   };
 }
 

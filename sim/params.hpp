@@ -58,7 +58,9 @@ std::vector<std::string> alias_list(const ParamSpec& p);
 std::string cli_names(const ParamSpec& p);
 
 // The whole description as JSON (what `tessim schema` prints): "parameters", "int_ops",
-// "statistics", "cpg_cycles", "cpg_cycles_by_variant", "rtl_parameters".
+// "statistics", "cpg_cycles", "cpg_cycles_by_variant", "rtl_parameters", "position_bound",
+// "interface" (tess_unit's ports, item widths and codes, sim/ports.hpp) and "rtl_builds"
+// (rtl/builds.json, sim/rtl_builds.hpp).
 nlohmann::json schema_json();
 
 }  // namespace tessim::sim
