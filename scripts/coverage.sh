@@ -8,7 +8,9 @@ cd "$(dirname "$0")/.."
 out=${1:-build/coverage.json}
 tessim=${TESSIM:-build/bin/tessim}
 rm -f "$out"
-n3=(--variant n3_lat3 --int 3 --int-latency 3 --contexts 6 --cpg-lanes 3 --cpg-digit-bits 5 --cpg-tags 1)
+# --variant n3_lat3 and its hardware flags, from `tessim schema` (rtl/builds.json)
+args=$(/usr/bin/python3 scripts/rtl_builds.py --tessim "$tessim" args n3_lat3)
+read -ra n3 <<< "$args"
 resets=$(seq -s, 97 1013 40000)  # resets spread over the run: the CPG is caught in each state
 run() { "$tessim" cosim --coverage "$out" "$@" > /dev/null || { echo "coverage: FAIL: tessim cosim $*" >&2; exit 1; }; }
 for mode in quadratic reflect linear; do

@@ -23,61 +23,65 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import rtl_builds  # noqa: E402
+import sweep  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL_BUILDS = "n1;n3_lat3;n2_w28b20;n1_w20b18"
 # Test binaries built beside tessim for the stimuli that drive the unit below the host (raw factors).
 TEST_TARGETS = ["fsu_cosim_test"]
-N3 = ["--variant", "n3_lat3", "--int", "3", "--int-latency", "3", "--contexts", "6", "--cpg-lanes", "3",
-      "--cpg-digit-bits", "5", "--cpg-tags", "1"]
-# The builds with the free parameters away from their defaults (rtl/CMakeLists.txt): FIFO depths 3
-# and 5, W = 28 and 20, B = 20 and 18.
-W28 = ["--variant", "n2_w28b20", "--int", "2", "--tri-fifo-depth", "3", "--vtx-fifo-depth", "5",
-       "--coord-frac-bits", "24", "--bary-bits", "20", "--cpg-tags", "1"]
-W20 = ["--variant", "n1_w20b18", "--int", "1", "--int-latency", "2", "--contexts", "3", "--tri-fifo-depth", "5",
-       "--vtx-fifo-depth", "3", "--coord-int-bits", "2", "--coord-frac-bits", "17", "--bary-bits", "18"]
 WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
-# Stimulus, in order; a mutant is run until the first failure. Together: every normal mode,
-# N = 1 and N = 3, INT latency 3, no / constant / random backpressure, degenerate triangles, a
-# real mesh, and saturation.
-STIMULUS = [
-    ("random quadratic N=3 K=1", ["--random", "60", "--random-max-L", "6", "--gpe-cycles", "1"] + N3),
-    ("random linear N=3 stall", ["--random", "60", "--random-max-L", "6", "--normals", "linear", "--stall", "0.3",
-                                 "--gpe-cycles", "2"] + N3),
-    ("random reflect N=3 K=8", ["--random", "40", "--random-max-L", "5", "--normals", "reflect"] + N3),
-    ("saturating quadratic N=3", ["--random", "120", "--random-max-L", "3", "--random-extent", "30",
-                                  "--gpe-cycles", "1"] + N3),
-    ("saturating reflect N=1", ["--random", "120", "--random-max-L", "3", "--random-extent", "30", "--normals",
-                                "reflect", "--gpe-cycles", "1", "--variant", "n1", "--int", "1"]),
-    ("Wuson L=3 quadratic N=3", [WUSON, "-L", "3"] + N3),
-    # n3_lat3 takes scalar tags: with cpg_tags 1 the random triangles carry random tags.
-    ("random tagged N=3 stall", ["--random", "40", "--random-max-L", "4", "--stall", "0.3", "--gpe-cycles", "2"] + N3),
-    ("random tagged reflect N=3", ["--random", "30", "--random-max-L", "3", "--normals", "reflect",
-                                   "--gpe-cycles", "1"] + N3),
-    ("random linear N=1 K=1", ["--random", "40", "--random-max-L", "6", "--normals", "linear", "--gpe-cycles", "1",
-                               "--variant", "n1", "--int", "1"]),
-    # The D3D11 pattern: random factors, a partitioning drawn per triangle, and one partitioning on N = 1.
-    ("random D3D11 mixed N=3 stall", ["--random", "40", "--random-max-L", "10", "--partitioning", "mixed",
-                                      "--stall", "0.3", "--gpe-cycles", "2"] + N3),
-    ("random D3D11 fractional_odd N=1", ["--random", "40", "--random-max-L", "12", "--partitioning",
-                                         "fractional_odd", "--gpe-cycles", "1", "--variant", "n1", "--int", "1"]),
-    # Resets at random cycles, aimed in turn at any cycle, the inner rings of a D3D11 patch (large
-    # factors) and the CPG mid-triangle.
-    ("random resets D3D11 mixed N=3 stall", ["--random", "16", "--random-max-L", "40", "--partitioning", "mixed",
-                                             "--random-resets", "9", "--stall", "0.2", "--gpe-cycles", "2"] + N3),
-    # The free parameters away from their defaults, fast and slow GE (K = 16 is slower than either TE:
-    # the VTX FIFO fills), uniform and D3D11 patterns, saturation.
-    ("W=28 B=20 D3D11 mixed N=2 K=1", ["--random", "30", "--random-max-L", "10", "--partitioning", "mixed",
-                                       "--gpe-cycles", "1"] + W28),
-    ("W=20 B=18 random quadratic N=1 K=1", ["--random", "30", "--random-max-L", "6", "--gpe-cycles", "1"] + W20),
-    ("W=28 B=20 random linear N=2 slow GE", ["--random", "30", "--random-max-L", "6", "--normals", "linear",
-                                             "--gpe-cycles", "16"] + W28),
-    ("W=20 B=18 random linear N=1 slow GE", ["--random", "30", "--random-max-L", "6", "--normals", "linear",
-                                             "--gpe-cycles", "16"] + W20),
-    ("W=20 B=18 saturating reflect N=1", ["--random", "60", "--random-max-L", "3", "--random-extent", "30",
-                                          "--normals", "reflect", "--gpe-cycles", "1"] + W20),
-    # Raw D3D11 factors, every value the interface admits (tests/cosim/fsu_cosim_test.cpp, on n3_lat3).
-    ("FSU raw factors N=3 (fsu_cosim_test)", {"test": "fsu_cosim_test", "filter": "FsuRawFactors.*"}),
-]
+
+
+def stimulus(tessim):
+    """The stimulus, in order; a mutant is run until the first failure. Together: every normal
+    mode, N = 1 and N = 3, INT latency 3, no / constant / random backpressure, degenerate triangles,
+    a real mesh, and saturation. The builds' flags come from `tessim schema` (rtl/builds.json)."""
+    N3, N1 = rtl_builds.cosim_args(tessim, "n3_lat3"), rtl_builds.cosim_args(tessim, "n1")
+    # The builds with the free parameters away from their defaults: FIFO depths 3 and 5, W = 28
+    # and 20, B = 20 and 18.
+    W28, W20 = rtl_builds.cosim_args(tessim, "n2_w28b20"), rtl_builds.cosim_args(tessim, "n1_w20b18")
+    return [
+        ("random quadratic N=3 K=1", ["--random", "60", "--random-max-L", "6", "--gpe-cycles", "1"] + N3),
+        ("random linear N=3 stall", ["--random", "60", "--random-max-L", "6", "--normals", "linear", "--stall", "0.3",
+                                     "--gpe-cycles", "2"] + N3),
+        ("random reflect N=3 K=8", ["--random", "40", "--random-max-L", "5", "--normals", "reflect"] + N3),
+        ("saturating quadratic N=3", ["--random", "120", "--random-max-L", "3", "--random-extent", "30",
+                                      "--gpe-cycles", "1"] + N3),
+        ("saturating reflect N=1", ["--random", "120", "--random-max-L", "3", "--random-extent", "30", "--normals",
+                                    "reflect", "--gpe-cycles", "1"] + N1),
+        ("Wuson L=3 quadratic N=3", [WUSON, "-L", "3"] + N3),
+        # n3_lat3 takes scalar tags: with cpg_tags 1 the random triangles carry random tags.
+        ("random tagged N=3 stall", ["--random", "40", "--random-max-L", "4", "--stall", "0.3",
+                                     "--gpe-cycles", "2"] + N3),
+        ("random tagged reflect N=3", ["--random", "30", "--random-max-L", "3", "--normals", "reflect",
+                                       "--gpe-cycles", "1"] + N3),
+        ("random linear N=1 K=1", ["--random", "40", "--random-max-L", "6", "--normals", "linear",
+                                   "--gpe-cycles", "1"] + N1),
+        # The D3D11 pattern: random factors, a partitioning drawn per triangle, and one partitioning on N = 1.
+        ("random D3D11 mixed N=3 stall", ["--random", "40", "--random-max-L", "10", "--partitioning", "mixed",
+                                          "--stall", "0.3", "--gpe-cycles", "2"] + N3),
+        ("random D3D11 fractional_odd N=1", ["--random", "40", "--random-max-L", "12", "--partitioning",
+                                             "fractional_odd", "--gpe-cycles", "1"] + N1),
+        # Resets at random cycles, aimed in turn at any cycle, the inner rings of a D3D11 patch (large
+        # factors) and the CPG mid-triangle.
+        ("random resets D3D11 mixed N=3 stall", ["--random", "16", "--random-max-L", "40", "--partitioning", "mixed",
+                                                 "--random-resets", "9", "--stall", "0.2", "--gpe-cycles", "2"] + N3),
+        # The free parameters away from their defaults, fast and slow GE (K = 16 is slower than either TE:
+        # the VTX FIFO fills), uniform and D3D11 patterns, saturation.
+        ("W=28 B=20 D3D11 mixed N=2 K=1", ["--random", "30", "--random-max-L", "10", "--partitioning", "mixed",
+                                           "--gpe-cycles", "1"] + W28),
+        ("W=20 B=18 random quadratic N=1 K=1", ["--random", "30", "--random-max-L", "6", "--gpe-cycles", "1"] + W20),
+        ("W=28 B=20 random linear N=2 slow GE", ["--random", "30", "--random-max-L", "6", "--normals", "linear",
+                                                 "--gpe-cycles", "16"] + W28),
+        ("W=20 B=18 random linear N=1 slow GE", ["--random", "30", "--random-max-L", "6", "--normals", "linear",
+                                                 "--gpe-cycles", "16"] + W20),
+        ("W=20 B=18 saturating reflect N=1", ["--random", "60", "--random-max-L", "3", "--random-extent", "30",
+                                              "--normals", "reflect", "--gpe-cycles", "1"] + W20),
+        # Raw D3D11 factors, every value the interface admits (tests/cosim/fsu_cosim_test.cpp, on n3_lat3).
+        ("FSU raw factors N=3 (fsu_cosim_test)", {"test": "fsu_cosim_test", "filter": "FsuRawFactors.*"}),
+    ]
 
 
 def run(cmd, **kw):
@@ -148,11 +152,11 @@ def restore(src, mutant):
     os.utime(os.path.join(src, mutant["file"]))  # newer than the mutant's build: rebuild
 
 
-def stimulate(tessim, log, stop_at_first=True):
-    """Runs the stimulus; returns [(index, output)] of the failures (only the first one when
+def stimulate(tessim, stimuli, log, stop_at_first=True):
+    """Runs the stimuli; returns [(index, output)] of the failures (only the first one when
     stop_at_first), empty when every stimulus passes."""
     failures = []
-    for i, (name, args) in enumerate(STIMULUS):
+    for i, (name, args) in enumerate(stimuli):
         if isinstance(args, dict):  # a test binary of the same build
             cmd = [os.path.join(os.path.dirname(tessim), args["test"]), "--gtest_filter=" + args["filter"]]
         else:
@@ -194,10 +198,14 @@ def main():
     t0 = time.time()
     if not build(src, bld, log):
         raise SystemExit("mutants: the unmutated copy does not build (see %s)" % log.name)
-    failed = stimulate(tessim, log)
+    try:
+        stimuli = stimulus(tessim)
+    except sweep.SpecError as e:
+        raise SystemExit("mutants: %s" % e)
+    failed = stimulate(tessim, stimuli, log)
     if failed:
-        raise SystemExit("mutants: the unmutated copy fails '%s' (see %s)" % (STIMULUS[failed[0][0]][0], log.name))
-    print("unmutated: builds and passes all %d stimuli (%.0f s)" % (len(STIMULUS), time.time() - t0), flush=True)
+        raise SystemExit("mutants: the unmutated copy fails '%s' (see %s)" % (stimuli[failed[0][0]][0], log.name))
+    print("unmutated: builds and passes all %d stimuli (%.0f s)" % (len(stimuli), time.time() - t0), flush=True)
 
     rows, problems = [], []
     for m in table:
@@ -207,14 +215,14 @@ def main():
             if not build(src, bld, log):
                 caught, stim, cycle = "build failed", "-", None
             else:
-                failures = stimulate(tessim, log, stop_at_first=not args.all_stimuli)
+                failures = stimulate(tessim, stimuli, log, stop_at_first=not args.all_stimuli)
                 if not failures:
                     caught, stim, cycle = "SURVIVED", "-", None
                 else:
                     caught, cycle = classify(failures[0][1])
-                    stim = STIMULUS[failures[0][0]][0]
+                    stim = stimuli[failures[0][0]][0]
                     if args.all_stimuli:  # every stimulus that catches it, with its first divergent cycle
-                        stim = "; ".join("%s (%s)" % (STIMULUS[i][0], classify(out)[1]) for i, out in failures)
+                        stim = "; ".join("%s (%s)" % (stimuli[i][0], classify(out)[1]) for i, out in failures)
         finally:
             restore(src, m)
         seconds = time.time() - t

@@ -1067,7 +1067,15 @@ FLOAT_VERTEX_BYTES = 24  # position + normal, 6 x float32
 INDEX_BYTES = 4
 
 
-def bus_traffic(rows, out, topology):
+def item_bits(item, r):
+    """Bits of one item of the unit's interfaces (`tessim schema`, interface.items: "triangle" in,
+    "vertex" out) in row r's configuration: terms coef * product of variables."""
+    values = {"W": 1 + r["coord_int_bits"] + r["coord_frac_bits"], "bary_bits": r["bary_bits"],
+              "int_blocks": r["int_blocks"], "cpg_tags": r.get("cpg_tags") or 0}
+    return sum(t["coef"] * math.prod(values[v] for v in t["of"]) for t in item["terms"])
+
+
+def bus_traffic(rows, out, topology, items):
     t = in_grid(rows, "tess_factor")
     if not t:
         return out.skip("bus traffic", "no rows of grid 'tess_factor'")
@@ -1088,10 +1096,8 @@ def bus_traffic(rows, out, topology):
         # equivalent is the welded mesh: coarse vertices, L - 1 points per edge, the interior points.
         welded = V + E * (L - 1) + T * (L - 1) * (L - 2) // 2
         tess = welded * FLOAT_VERTEX_BYTES + T * L * L * 3 * INDEX_BYTES
-        W = 1 + r["coord_int_bits"] + r["coord_frac_bits"]
-        B = r["bary_bits"]
-        unit_in = T * (18 * W + 7 + 32) / 8
-        unit_out = r["vertices_out"] * (6 * W + 2 * (B + 1) + 3 * 7 + 32 + 1 + 2) / 8
+        unit_in = T * item_bits(items["triangle"], r) / 8
+        unit_out = r["vertices_out"] * item_bits(items["vertex"], r) / 8
         table.append([L, T * L * L, welded, r["vertices_out"], fmt_kb(coarse / 1e3), fmt_kb(tess / 1e3),
                       fmt_kb(tess / coarse) if tess / coarse >= 1000 else fmt(tess / coarse, 3),
                       fmt_kb((tess - coarse) / 1e3), fmt_kb(unit_in / 1e3),
@@ -1105,9 +1111,11 @@ def bus_traffic(rows, out, topology):
                    f"({FLOAT_VERTEX_BYTES} B), three 32-bit indices per triangle. Without the unit the host sends "
                    "the tessellated mesh, welded (V + E(L−1) + T(L−1)(L−2)/2 vertices, T·L² triangles); with it, "
                    "the coarse mesh. The last two columns are the unit's own interfaces "
-                   "(docs/microarchitecture.md §3): 18 W-bit coordinates + L + id per triangle in; per vertex "
-                   "out 6 W-bit coordinates, (u, v), (j, k, L), id, last, flags — each patch emits its shared-edge "
-                   "vertices again, so the unit's output count is T(L+1)(L+2)/2.")
+                   "(docs/microarchitecture.md §3; widths from `tessim schema`, interface.items): per triangle in "
+                   "18 W-bit coordinates, the pattern descriptor (L, pattern, four D3D11 factors) and the id, "
+                   f"{items['triangle']['width']} bits; per vertex out 6 W-bit coordinates, (u, v), (j, k, L), "
+                   f"the index in the patch, id, last, flags, {items['vertex']['width']} bits — each patch emits "
+                   "its shared-edge vertices again, so the unit's output count is T(L+1)(L+2)/2.")
 
 
 # --------------------------------------------------------------------------- main
@@ -1227,7 +1235,7 @@ def main(argv):
     ap.add_argument("--logy", action="store_true")
     ap.add_argument("-o", "--output", default="plot.png", help="... the figure (.png; an .svg is written beside it)")
     ap.add_argument("--tessim", default=str(REPO / "build" / "bin" / "tessim"),
-                    help="tessim binary, for mesh bounding boxes (error bound, bus traffic)")
+                    help="tessim binary: its schema (symbols, interface widths) and mesh bounding boxes")
     args = ap.parse_args(argv)
     rows = load_rows(args.results)
     if not rows:
@@ -1247,7 +1255,8 @@ def main(argv):
     import sweep
     try:
         SYMBOLS.update({p["key"]: p["symbol"] for p in sweep.schema(args.tessim)["parameters"] if p["symbol"]})
-    except (OSError, sweep.SpecError) as e:
+        items = sweep.schema(args.tessim)["interface"]["items"]
+    except (OSError, KeyError, sweep.SpecError) as e:
         print(f"plots.py: error: tessim schema: {e}", file=sys.stderr)
         return 2
     info = mesh_info_reader(args.tessim)
@@ -1263,7 +1272,7 @@ def main(argv):
     fig_adaptive_partitioning(rows, out)
     tables_extra(rows, out)
     fig_errors(rows, out, info)
-    bus_traffic(rows, out, info)
+    bus_traffic(rows, out, info, items)
     out.write_tables()
     for f in out.files:
         print(f"plots.py: wrote {f}", file=sys.stderr)

@@ -16,8 +16,11 @@ rm -rf "$out"
 mkdir -p "$out"
 export TESSIM_RTL_COVERAGE_FILE="$PWD/$out/unit.dat"
 tessim="$bld/bin/tessim"
-n3=(--variant n3_lat3 --int 3 --int-latency 3 --contexts 6 --cpg-lanes 3 --cpg-digit-bits 5 --cpg-tags 1)
-n1=(--variant n1 --int 1)
+# --variant NAME and the build's hardware flags, from `tessim schema` (rtl/builds.json)
+args=$(/usr/bin/python3 scripts/rtl_builds.py --tessim "$tessim" args n3_lat3)
+read -ra n3 <<< "$args"
+args=$(/usr/bin/python3 scripts/rtl_builds.py --tessim "$tessim" args n1)
+read -ra n1 <<< "$args"
 resets=$(seq -s, 97 1013 20000)
 run() { "$tessim" cosim "$@" >/dev/null || { echo "rtl_coverage: FAIL: tessim cosim $*" >&2; exit 1; }; }
 for mode in quadratic reflect linear; do

@@ -19,33 +19,27 @@ import sys
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import rtl_builds  # noqa: E402
+import sweep  # noqa: E402
+
 REPO = Path(__file__).resolve().parent.parent
 MODELS = Path("/usr/share/assimp/models")
 MESHES = [MODELS / "PLY/Wuson.ply", MODELS / "STL/sphereWithHole.stl", MODELS / "OBJ/spider.obj"]
 MODES = ["quadratic", "reflect", "linear"]
 RAN = re.compile(r"ran (\d+) cycles, (\d+) triangles in, (\d+) vertices out")
-# The RTL builds (docs/rtl.md), by the hardware flags that select them.
-BUILDS = [
-    ("n1", ["--int-blocks", "1"]),
-    ("n2", ["--int-blocks", "2"]),
-    ("n3", ["--int-blocks", "3"]),
-    ("n4", ["--int-blocks", "4"]),
-    ("n1_r4", ["--int-blocks", "1", "--cpg-digit-bits", "4", "--cpg-tags", "1"]),
-    ("n2_l3r8", ["--int-blocks", "2", "--cpg-lanes", "3", "--cpg-digit-bits", "8", "--cpg-tags", "1"]),
-    ("n3_lat3", ["--int-blocks", "3", "--int-latency", "3", "--te-contexts", "6", "--cpg-lanes", "3",
-                 "--cpg-digit-bits", "5", "--cpg-tags", "1"]),
-    ("n4_l3r24", ["--int-blocks", "4", "--cpg-lanes", "3", "--cpg-digit-bits", "24", "--cpg-tags", "1"]),
-    # The free parameters away from their defaults: FIFO depths 3 and 5, W = 28 and 20, B = 20 and 18.
-    ("n2_w28b20", ["--int-blocks", "2", "--tri-fifo-depth", "3", "--vtx-fifo-depth", "5", "--coord-frac-bits", "24",
-                   "--bary-bits", "20", "--cpg-tags", "1"]),
-    ("n1_w20b18", ["--int-blocks", "1", "--int-latency", "2", "--te-contexts", "3", "--tri-fifo-depth", "5",
-                   "--vtx-fifo-depth", "3", "--coord-int-bits", "2", "--coord-frac-bits", "17", "--bary-bits", "18"]),
-]
 
 
-def job_args(rng, index):
+def soak_builds(tessim):
+    """The fault-free fast builds of `tessim schema` (rtl/builds.json), each with the hardware
+    flags that select it: the verification build (same hardware as n2) and the fault-injected
+    ones are left out."""
+    return [(b["name"], b["flags"]) for b in rtl_builds.builds(tessim) if not b["verif"] and b["inject_bug"] == 0]
+
+
+def job_args(rng, index, builds):
     """One co-simulation job: a stream, a configuration and a run of consecutive seeds."""
-    build, hardware = BUILDS[index % len(BUILDS)]  # every build equally often
+    build, hardware = builds[index % len(builds)]  # every build equally often
     args = ["cosim", "--variant", build] + hardware + ["--normals", rng.choice(MODES),
             "--gpe-cycles", str(rng.choice([1, 2, 4, 7, 8, 12])),
             "--gpe-stall-prob", str(rng.choice([0.0, 0.0, 0.1, 0.3, 0.6])),
@@ -88,6 +82,10 @@ def main(argv):
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--seed", type=int, default=1, help="seeds the choice of jobs")
     args = ap.parse_args(argv)
+    try:
+        soak = soak_builds(args.tessim)
+    except sweep.SpecError as e:
+        raise SystemExit(f"soak: {e}")
     rng = random.Random(args.seed)
     start = time.monotonic()
     totals = {"vertices": 0, "cycles": 0, "seeds": 0, "mismatches": 0, "jobs": 0}
@@ -98,7 +96,7 @@ def main(argv):
 
         def submit():
             nonlocal index
-            job, what = job_args(rng, index)
+            job, what = job_args(rng, index, soak)
             index += 1
             pending[pool.submit(run, args.tessim, job)] = (job, what)
 
