@@ -178,23 +178,23 @@ module tess_cpg #(
       assign corner_len[v] = tg_in[v] ? CntW'(TaggedLen) : nn_in[v] ? CntW'(NormLen) : '0;
       assign tan_len[v] = CntW'(TanLen) * (CntW'(nn_in[v]) + CntW'(nn_in[(v + 1) % 3]));
     end
-    logic [CntW-1:0] cmax, tmax;
+    // One lane takes every corner and tangent point in turn (the sums), three lanes take them
+    // at once (the slowest corner and the slowest edge).
+    logic [CntW-1:0] face_len, csum, tsum, cmax, tmax;
+    assign face_len = (tg_in != '0) ? CntW'(FaceLen) : '0;
     always_comb begin
-      tag_cycles = (tg_in != '0) ? CntW'(FaceLen) : '0;
+      csum = '0;
+      tsum = '0;
       cmax = '0;
       tmax = '0;
-      if (CpgLanes == 1) begin
-        for (int v = 0; v < 3; v++) tag_cycles = tag_cycles + corner_len[v] + tan_len[v];
-      end else begin
-        cmax = '0;
-        tmax = '0;
-        for (int v = 0; v < 3; v++) begin
-          if (corner_len[v] > cmax) cmax = corner_len[v];
-          if (tan_len[v] > tmax) tmax = tan_len[v];
-        end
-        tag_cycles = tag_cycles + cmax + tmax;
+      for (int v = 0; v < 3; v++) begin
+        csum = csum + corner_len[v];
+        tsum = tsum + tan_len[v];
+        if (corner_len[v] > cmax) cmax = corner_len[v];
+        if (tan_len[v] > tmax) tmax = tan_len[v];
       end
     end
+    assign tag_cycles = face_len + ((CpgLanes == 1) ? csum + tsum : cmax + tmax);
 
     // The latched tags and the tag pass's results per corner.
     (* mem2reg *) logic [3*W-1:0] delta_q [3], field_q [3], x_q [3], y_q [3];
