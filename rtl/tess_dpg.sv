@@ -125,7 +125,7 @@ module tess_dpg #(
   end
 
   // ------------------------------------------------------------------ D3D11 walk
-  logic [EW-1:0] outer_edge [3];
+  (* mem2reg *) logic [EW-1:0] outer_edge [3];
   logic [EW-1:0] inner_edge;
   logic [6:0]    n_inner;
   logic [XW-1:0] point_count;

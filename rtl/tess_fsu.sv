@@ -15,7 +15,7 @@ module tess_fsu (
   localparam int unsigned Fac = Pat + tess_pkg::PatternBits;
 
   logic [1:0]    pattern;
-  logic [FW-1:0] factor [4];
+  (* mem2reg *) logic [FW-1:0] factor [4];
   assign pattern = desc_i[Pat +: 2];
   for (genvar e = 0; e < 4; e++) begin : g_factor
     assign factor[e] = desc_i[Fac + e * FW +: FW];
@@ -33,7 +33,7 @@ module tess_fsu (
     end
   end
 
-  logic [EW-1:0] edges [4];
+  (* mem2reg *) logic [EW-1:0] edges [4];
   for (genvar e = 0; e < 4; e++) begin : g_edge
     tess_fsu_edge u_edge (.factor_i(factor[e]), .odd_i(odd[e]), .edge_o(edges[e]));
   end
