@@ -1,11 +1,20 @@
 // FSU: factor setup unit (docs/microarchitecture.md §7; model/d3d11_pattern.cpp
-// d3d11_factors_from_fixed, d3d11_setup). Combinational from the pattern descriptor the CPG
-// holds while it computes the control points; the control-point buffer stores the result with
-// the nets, so the DPG walks a D3D11 patch from its first cycle at one point per cycle. The
-// factors arrive processed by the host (clamped, rounded, 16.16): this is the tessellator's
-// integer part, no floating point.
+// d3d11_factors_from_fixed, d3d11_setup). The factors arrive processed by the host (clamped,
+// rounded, 16.16): this is the tessellator's integer part, no floating point.
+//
+// Sequential beside the CPG: the CPG holds the triangle's pattern descriptor from the cycle after
+// it takes the triangle until it takes the next one, at least C >= 8 cycles later, and writes the
+// control points no earlier than C cycles after taking it. One edge setup (tess_fsu_edge, two
+// stages) takes the four factors in turn, one a cycle, into four records: they are complete five
+// cycles after the CPG took the triangle. The per-patch part (points of an inner edge, rings,
+// point count) is combinational from the records, and the CPG's buffer write stores the setup
+// with the nets, so the DPG walks a D3D11 patch from its first cycle at one point per cycle.
 module tess_fsu (
-  input  logic [tess_pkg::DescBits-1:0]  desc_i,   // {factors[3..0], pattern, L}
+  input  logic                           clk_i,
+  input  logic                           rst_ni,
+  input  logic                           start_i,  // the CPG takes a triangle: desc_i from the next cycle
+  input  logic [tess_pkg::DescBits-1:0]  desc_i,   // {factors[3..0], pattern, L}, held by the CPG
+  output logic                           busy_o,   // records still being computed
   output logic [tess_pkg::SetupBits-1:0] setup_o   // {point count, inner points, inner, outer 2..0}
 );
 
@@ -21,23 +30,71 @@ module tess_fsu (
     assign factor[e] = desc_i[Fac + e * FW +: FW];
   end
 
+  // ------------------------------------------------------------------ the factors in turn
+  // One-hot: factor e is in the setup's first stage in the (e + 1)-th cycle after start_i, in its
+  // second stage a cycle later.
+  logic [3:0] first_d, first_q, second_d, second_q;
+  assign first_d  = start_i ? 4'b0001 : {first_q[2:0], 1'b0};
+  assign second_d = first_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      first_q  <= '0;
+      second_q <= '0;
+    end else begin
+      first_q  <= first_d;
+      second_q <= second_d;
+    end
+  end
+  assign busy_o = (first_q != '0) || (second_q != '0);
+
+  logic [FW-1:0] cur_factor;
+  logic          cur_inner;
+  always_comb begin
+    cur_factor = '0;
+    for (int e = 0; e < 4; e++) cur_factor |= first_q[e] ? factor[e] : '0;
+  end
+  assign cur_inner = first_q[3];
+
   // Parity: integer factors their own (an inner factor of 1 counts as even: the rings end in a
   // centre point); fractional_odd odd, fractional_even even.
-  logic [3:0] odd;
-  for (genvar e = 0; e < 4; e++) begin : g_parity
-    if (e < 3) begin : g_outer
-      assign odd[e] = (pattern == tess_pkg::PatInteger) ? factor[e][16] : (pattern == tess_pkg::PatFracOdd);
-    end else begin : g_inner
-      assign odd[e] = (pattern == tess_pkg::PatInteger) ? factor[e][16] && factor[e] != FW'(32'h10000)
-                                                         : (pattern == tess_pkg::PatFracOdd);
+  logic cur_odd;
+  assign cur_odd = (pattern == tess_pkg::PatInteger) ? cur_factor[16] && !(cur_inner && cur_factor == FW'(32'h10000))
+                                                     : (pattern == tess_pkg::PatFracOdd);
+
+  logic [6:0]  cur_points;
+  logic [5:0]  cur_split, cur_half_points;
+  logic [32:0] prev_floor_weight, prev_ceil_weight;
+  tess_fsu_edge u_edge (
+    .clk_i         (clk_i),
+    .factor_i      (cur_factor),
+    .odd_i         (cur_odd),
+    .points_o      (cur_points),
+    .split_o       (cur_split),
+    .half_points_o (cur_half_points),
+    .floor_weight_o(prev_floor_weight),
+    .ceil_weight_o (prev_ceil_weight)
+  );
+
+  // ------------------------------------------------------------------ the four records
+  // Data only (not reset): written after every start_i before the CPG's buffer write reads them.
+  (* mem2reg *) logic [19:0] shape_q [4];    // {points, split, half points, odd}
+  (* mem2reg *) logic [65:0] weights_q [4];  // {ceil weight, floor weight}
+  for (genvar e = 0; e < 4; e++) begin : g_record
+    always_ff @(posedge clk_i) begin
+      if (first_q[e]) shape_q[e] <= {cur_points, cur_split, cur_half_points, cur_odd};
+      if (second_q[e]) weights_q[e] <= {prev_ceil_weight, prev_floor_weight};
     end
   end
 
+  // One edge's setup as the DPG reads it: {points, cw, fw, split, half points, odd}.
   (* mem2reg *) logic [EW-1:0] edges [4];
   for (genvar e = 0; e < 4; e++) begin : g_edge
-    tess_fsu_edge u_edge (.factor_i(factor[e]), .odd_i(odd[e]), .edge_o(edges[e]));
+    assign edges[e] = {shape_q[e][19:13], weights_q[e], shape_q[e][12:0]};
   end
+  logic inner_odd;
+  assign inner_odd = shape_q[3][0];
 
+  // ------------------------------------------------------------------ the patch
   // All four factors 1 (not fractional_even): the domain itself, three points.
   logic single;
   assign single = (pattern != tess_pkg::PatFracEven) && factor[0] == FW'(32'h10000) &&
@@ -47,7 +104,7 @@ module tess_fsu (
   // 3 (n - 1 - 2r) points, and the centre of an even pattern.
   logic [6:0] inner_pts, n_inner, min_inner, rings;
   assign inner_pts = edges[3][EW-1 -: 7];
-  assign min_inner = odd[3] ? 7'd4 : 7'd3;
+  assign min_inner = inner_odd ? 7'd4 : 7'd3;
   assign n_inner   = single ? '0 : (inner_pts > min_inner ? inner_pts : min_inner);
   assign rings     = (n_inner >= 7'd2) ? (n_inner >> 1) - 7'd1 : '0;
 
@@ -59,7 +116,7 @@ module tess_fsu (
   assign ring_width   = n_inner - 7'd2 - rings;
   assign ring_product = 14'(rings) * 14'(ring_width);
   assign ring_points  = tess_pkg::IndexBits'(ring_product) + tess_pkg::IndexBits'({ring_product, 1'b0});
-  assign point_count = outer_ring + (single ? '0 : ring_points + tess_pkg::IndexBits'(!odd[3]));
+  assign point_count = outer_ring + (single ? '0 : ring_points + tess_pkg::IndexBits'(!inner_odd));
 
   assign setup_o = {point_count, n_inner, edges[3], edges[2], edges[1], edges[0]};
 

@@ -4,14 +4,27 @@
 // point (ruler order: the top bit of floor(H) cleared), the segment counts of floor(H) and
 // ceil(H) and their 16.16 reciprocals from a 64-entry table, and the blend's two weights
 // R(n_floor)(1 - phi), R(n_ceil) phi, so that a point costs the DPG two small multiplies.
+//
+// Two stages of one cycle each, so that one setup takes a new factor every cycle (tess_fsu):
+// the edge's shape and its two reciprocals come from the factor of this cycle, the blend
+// weights from the reciprocals registered in the cycle before (the 17 x 17-bit products would
+// otherwise sit behind the table, one path of about 120 logic levels).
 module tess_fsu_edge (
-  input  logic [tess_pkg::FixBits-1:0]  factor_i,  // 16.16, 1..64
-  input  logic                          odd_i,
-  output logic [tess_pkg::EdgeBits-1:0] edge_o     // {points, cw, fw, split, half points, odd}
+  input  logic                         clk_i,
+  input  logic [tess_pkg::FixBits-1:0] factor_i,      // 16.16, 1..64
+  input  logic                         odd_i,
+  // The shape of factor_i's edge
+  output logic [6:0]                   points_o,
+  output logic [5:0]                   split_o,
+  output logic [5:0]                   half_points_o,
+  // The blend weights of the previous cycle's factor_i
+  output logic [32:0]                  floor_weight_o,
+  output logic [32:0]                  ceil_weight_o
 );
 
   localparam int unsigned FW = tess_pkg::FixBits;
 
+  // ------------------------------------------------------------------ stage 1: shape, reciprocals
   logic [FW-1:0] half0, half, floor_half, ceil_half;
   logic [15:0]   phi;
   assign half0      = FW'(({1'b0, factor_i} + (FW + 1)'(1)) >> 1);
@@ -53,16 +66,24 @@ module tess_fsu_edge (
     end
   end
 
+  assign points_o      = {half_points, 1'b0} + 7'(!odd_i);
+  assign split_o       = split;
+  assign half_points_o = half_points;
+
+  // ------------------------------------------------------------------ stage 2: blend weights
+  // Pipeline registers: data only, read in the cycle after the factor they belong to.
+  logic [16:0] inv_floor_q, inv_ceil_q;
+  logic [15:0] phi_q;
+  always_ff @(posedge clk_i) begin
+    inv_floor_q <= inv_floor;
+    inv_ceil_q  <= inv_ceil;
+    phi_q       <= phi;
+  end
+
   logic [16:0] one_minus_phi;
-  logic [32:0] floor_weight, ceil_weight;
-  assign one_minus_phi = 17'h10000 - {1'b0, phi};
-  assign floor_weight = 33'(inv_floor) * 33'(one_minus_phi);
-  assign ceil_weight  = 33'(inv_ceil) * 33'(phi);
-
-  logic [6:0] points;
-  assign points = {half_points, 1'b0} + 7'(!odd_i);
-
-  assign edge_o = {points, ceil_weight, floor_weight, split, half_points, odd_i};
+  assign one_minus_phi  = 17'h10000 - {1'b0, phi_q};
+  assign floor_weight_o = 33'(inv_floor_q) * 33'(one_minus_phi);
+  assign ceil_weight_o  = 33'(inv_ceil_q) * 33'(phi_q);
 
   // ceil_half's fraction is floor_half's (zero); bit 22 is never set (H <= 33); the split
   // takes the cleared value's low five bits (floor(H) <= 32).

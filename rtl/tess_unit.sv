@@ -135,9 +135,18 @@ module tess_unit #(
   );
 
   // ------------------------------------------------------------------ factor setup (FSU)
-  // Combinational from the descriptor the CPG holds while it computes; stored with the nets.
+  // Sequential beside the CPG: its records are complete five cycles after the CPG takes the
+  // triangle, before the CPG can write it (C >= 8); stored with the nets.
+  logic                           fsu_busy;
   logic [tess_pkg::SetupBits-1:0] cpg_setup;
-  tess_fsu u_fsu (.desc_i(cpg_desc), .setup_o(cpg_setup));
+  tess_fsu u_fsu (
+    .clk_i  (clk_i),
+    .rst_ni (rst_ni),
+    .start_i(tri_pop),
+    .desc_i (cpg_desc),
+    .busy_o (fsu_busy),
+    .setup_o(cpg_setup)
+  );
 
   // ------------------------------------------------------------------ control-point buffers
   logic               rd_full, rd_ptr, drain, release_buf, release_last;
@@ -295,6 +304,7 @@ module tess_unit #(
         assert (vtx_head == vtx_stalled_data_q)
           else $error("tess_unit: vertex data changed while stalled");
       end
+      assert (!(cpg_wr && fsu_busy)) else $error("tess_unit: control points written before the FSU's records");
       if (tri_push && tri_pattern_i == tess_pkg::PatUniform) begin
         assert (tri_l_i >= LBits'(1) && tri_l_i <= LBits'(tess_pkg::MaxFactor))
           else $error("tess_unit: tessellation factor %0d outside 1..64", tri_l_i);
