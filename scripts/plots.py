@@ -555,12 +555,12 @@ def fig_cpg_variants(rows, out):
                       c["cost_cpg_xilinx_dsp"] if c else "–",
                       fmt(n2["cost_unit_transistors"] / 1e6, 4) if n2 else "–"])
     if not any(row[3] != "–" for row in table):
-        out.skip("CPG variant costs", "no cost_cpg_* columns on grid 'cpg' (run scripts/costs.py --compose-cpg)")
+        out.skip("CPG variant costs", "no cost_cpg_* columns on grid 'cpg' (run scripts/costs.py)")
     out.table("CPG variants: cycles per triangle and cost",
               ["CPG", "C quadratic", "C reflect", "CPG Mtr", "CPG cells", "CPG flops", "CPG depth", "CPG LUT",
                "CPG DSP", "unit N = 2, Mtr"], table,
-              note="Yosys 0.23 synthesis of tess_cpg alone (scripts/synth.sh --cpg-only); the unit is the N = 2 "
-                   "unit with its sequential CPG replaced (costs.py --compose-cpg).")
+              note="Yosys 0.23, composed from per-module records (scripts/yosys_cost.py): the CPG is tess_cpg "
+                   "and its submodules, the unit the N = 2 unit with that CPG.")
 
     # The cheapest unit that reaches the GPE's rate, per L.
     costed = [r for r in g if r.get("cost_unit_transistors") is not None]
