@@ -1,6 +1,7 @@
 #include "app/report_html.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
+#include "sim/blocks/counter_registry.hpp"
 #include "sim/params.hpp"
 #include "sim/simulate.hpp"
 #include "sim/version.hpp"
@@ -153,8 +155,8 @@ std::string value_text(const json& v) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The classes of the blocks, in the order they stack (useful work at the bottom) and their
-// colours (Okabe-Ito, distinguishable with the common colour-vision deficiencies).
+// The classes of the blocks from the counter registry (sim/blocks/counter_registry.hpp): in the
+// order they stack (useful work at the bottom), with their colours and meanings.
 
 struct ClassStyle {
   const char* key;
@@ -162,32 +164,21 @@ struct ClassStyle {
   const char* meaning;
 };
 
-constexpr ClassStyle kTeStyles[] = {
-    {"busy", "#009E73", "issued ops, no ready op left over"},
-    {"int_limited", "#E69F00", "all INT blocks taken, a ready op waits"},
-    {"context_limited", "#D55E00", "the oldest vertex waits on its dependence chain"},
-    {"pipeline", "#F0E442", "results in flight, nothing ready"},
-    {"blocked_by_gpe", "#CC79A7", "finished vertex, VTX FIFO full"},
-    {"starved_by_cpg", "#56B4E9", "no vertex, CPG or TRI FIFO busy"},
-    {"idle", "#C8C8C8", "nothing to do"},
-};
-constexpr ClassStyle kCpgStyles[] = {
-    {"busy", "#009E73", "accept, compute, write"},
-    {"blocked", "#CC79A7", "control points ready, buffer full"},
-    {"wait_gpe", "#56B4E9", "waiting for a spare GPE cycle (gpe mapping)"},
-    {"idle", "#C8C8C8", "no triangle"},
-};
-constexpr ClassStyle kGpeStyles[] = {
-    {"busy", "#009E73", "accepting or processing a vertex"},
-    {"stalled", "#E69F00", "random stall"},
-    {"cpg", "#0072B2", "spare cycle given to the CPG (gpe mapping)"},
-    {"starved", "#D55E00", "ready, no vertex offered"},
-};
+template <sim::CounterBlock Block>
+constexpr std::array<ClassStyle, sim::row_count(Block)> class_styles() {
+  std::array<ClassStyle, sim::row_count(Block)> styles{};
+  for (const sim::CounterRow& r : sim::kCounterRegistry)
+    if (r.block == Block) styles[static_cast<std::size_t>(r.stack)] = {r.key, r.colour, r.meaning};
+  return styles;
+}
+constexpr auto kTeStyles = class_styles<sim::CounterBlock::Te>();
+constexpr auto kCpgStyles = class_styles<sim::CounterBlock::Cpg>();
+constexpr auto kGpeStyles = class_styles<sim::CounterBlock::Gpe>();
 constexpr const char* kIntLine = "#000000";
 constexpr const char* kGpeLine = "#0072B2";
 
 template <std::size_t N>
-std::string legend(const ClassStyle (&styles)[N], const std::vector<double>& shares) {
+std::string legend(const std::array<ClassStyle, N>& styles, const std::vector<double>& shares) {
   std::string s = "<div class=\"legend\">";
   for (std::size_t i = 0; i < N; ++i)
     s += std::string("<span title=\"") + styles[i].meaning + "\"><span class=\"sw\" style=\"background:" +
@@ -197,7 +188,7 @@ std::string legend(const ClassStyle (&styles)[N], const std::vector<double>& sha
 
 // A horizontal bar of shares (CSS: drawn without SVG or script); labels on the wide parts.
 template <std::size_t N>
-std::string stacked_bar(const ClassStyle (&styles)[N], const std::vector<double>& shares, const std::string& label) {
+std::string stacked_bar(const std::array<ClassStyle, N>& styles, const std::vector<double>& shares, const std::string& label) {
   std::string s = "<div class=\"bar\" role=\"img\" aria-label=\"" + html_escape(label) + "\">";
   for (std::size_t i = 0; i < N; ++i) {
     if (shares[i] <= 0) continue;
@@ -269,7 +260,7 @@ std::string summary_section(const Stats& s) {
 }
 
 template <std::size_t N>
-std::vector<std::uint64_t> class_counts(const Stats& s, const std::string& block, const ClassStyle (&styles)[N],
+std::vector<std::uint64_t> class_counts(const Stats& s, const std::string& block, const std::array<ClassStyle, N>& styles,
                                         std::uint64_t cycles, bool must_sum) {
   std::vector<std::uint64_t> v;
   std::uint64_t sum = 0;

@@ -37,14 +37,19 @@ std::optional<Mismatch> CounterChecker::check(const sim::UnitCounters& e, const 
   auto diff = [](const std::string& name, std::uint64_t x, std::uint64_t y) {
     return Mismatch{"counters." + name, std::to_string(x), std::to_string(y)};
   };
-  for (const sim::CounterField& f : sim::kRunCounters)
-    if (e.*f.field != a.*f.field) return diff(f.name, e.*f.field, a.*f.field);
-  for (int i = 0; i < int_blocks_; ++i) {
-    const auto b = static_cast<std::size_t>(i);
-    if (e.int_busy[b] != a.int_busy[b]) return diff("int_busy[" + std::to_string(i) + "]", e.int_busy[b], a.int_busy[b]);
+  // Every counter the unit keeps, in registry order (sim/blocks/counter_registry.hpp): the run's
+  // counts, INT busy per block, the TE's and the CPG's classes.
+  for (std::size_t row = 0; row < sim::kCounterRegistry.size(); ++row) {
+    const sim::CounterRow& r = sim::kCounterRegistry[row];
+    const int instances = r.block == sim::CounterBlock::Int ? int_blocks_ : 1;
+    for (int i = 0; i < instances; ++i) {
+      const std::uint64_t* x = sim::counter_slot(e, row, i);
+      if (!x) continue;  // derived (an INT block's idle) or not the unit's (the GPE's)
+      const std::uint64_t y = *sim::counter_slot(a, row, i);
+      if (*x == y) continue;
+      return diff(r.block == sim::CounterBlock::Int ? std::string(r.name) + "[" + std::to_string(i) + "]" : r.name, *x, y);
+    }
   }
-  for (const sim::CounterField& f : sim::kClassCounters)
-    if (e.*f.field != a.*f.field) return diff(f.name, e.*f.field, a.*f.field);
   return std::nullopt;
 }
 

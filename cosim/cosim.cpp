@@ -306,7 +306,8 @@ std::string format_report(const CosimReport& r, const CosimOptions& o) {
       os << "  waveform of cycles " << o.wave_cycles->from << ".." << std::min(o.wave_cycles->to, r.cycles) << ": "
          << r.wave.string() << " (gtkwave " << gtkw_path(r.wave).string() << ")\n";
     os << "  counters: " << (r.counters_match ? "identical" : "DIFFER") << " (cycles " << r.rtl_counters.cycles
-       << ", TE busy " << r.rtl_counters.te_busy << ", CPG busy " << r.rtl_counters.cpg_busy << ")\n";
+       << ", TE busy " << r.rtl_counters.te[sim::TeClass::Busy] << ", CPG busy "
+       << r.rtl_counters.cpg[sim::CpgClass::Busy] << ")\n";
   }
   if (r.reference.stats.vertices) {
     const sim::ErrorStats& e = r.reference.stats;

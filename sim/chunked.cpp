@@ -68,32 +68,18 @@ SimResult merge_chunks(std::span<const SimResult> parts, const UnitConfig& cfg) 
   r.config = cfg;
   r.cpg_cycles = first.cpg_cycles;
   r.scaling = first.scaling;
-  r.unit.int_blocks.resize(first.unit.int_blocks.size());
+  r.unit.int_blocks = first.unit.int_blocks;
   std::vector<Timeline> timelines;
   timelines.reserve(parts.size());
   for (const SimResult& p : parts) {
     r.triangles += p.triangles;
     r.cpg_tag_cycles += p.cpg_tag_cycles;
-    r.unit.cycles += p.unit.cycles;
-    r.unit.triangles_in += p.unit.triangles_in;
-    r.unit.vertices_out += p.unit.vertices_out;
-    for (std::size_t b = 0; b < r.unit.int_blocks.size(); ++b) {
-      r.unit.int_blocks[b].busy += p.unit.int_blocks[b].busy;
-      r.unit.int_blocks[b].idle += p.unit.int_blocks[b].idle;
-    }
-    add(r.unit.te, p.unit.te);
-    r.unit.cpg.busy += p.unit.cpg.busy;
-    r.unit.cpg.blocked += p.unit.cpg.blocked;
-    r.unit.cpg.wait_gpe += p.unit.cpg.wait_gpe;
-    r.unit.cpg.idle += p.unit.cpg.idle;
+    add(r.unit, p.unit);
+    r.gpe += p.gpe;
     r.gpe.cycles += p.gpe.cycles;
     r.gpe.vertices += p.gpe.vertices;
-    r.gpe.busy += p.gpe.busy;
-    r.gpe.stalled += p.gpe.stalled;
-    r.gpe.cpg += p.gpe.cpg;
-    r.gpe.starved += p.gpe.starved;
     r.gpe_waited += p.gpe_waited;
-    add(r.te_late, p.te_late);
+    r.te_late += p.te_late;
     r.degenerate_patches += p.degenerate_patches;
     r.zero_normals += p.zero_normals;
     for (std::size_t L = 0; L < r.factors.patches_with_factor.size(); ++L)

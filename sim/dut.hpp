@@ -24,9 +24,6 @@ class Dut {
   virtual void tick(const UnitInputs& in) = 0; // the clock edge
 };
 
-// The counters of the RTL's perf_*_o ports, taken from the cycle model's statistics.
-UnitCounters counters_of(const UnitStats& s);
-
 class ModelDut final : public Dut {
  public:
   explicit ModelDut(const UnitConfig& cfg) : unit_(cfg) {}
@@ -35,7 +32,7 @@ class ModelDut final : public Dut {
   bool vtx_valid() const override { return unit_.vtx_valid(); }
   VertexFx vtx() const override { return unit_.vtx(); }
   bool cpg_computing() const override { return unit_.cpg_computing(); }
-  UnitCounters counters() const override { return counters_of(unit_.stats()); }
+  UnitCounters counters() const override { return unit_.stats(); }
   void tick(const UnitInputs& in) override { unit_.tick(in); }
   const Unit& unit() const { return unit_; }
 

@@ -4,16 +4,6 @@
 
 namespace tessim::sim {
 
-const char* to_string(GpeClass c) {
-  switch (c) {
-    case GpeClass::Busy: return "busy";
-    case GpeClass::Stalled: return "stalled";
-    case GpeClass::Cpg: return "cpg";
-    case GpeClass::Starved: return "starved";
-  }
-  return "?";
-}
-
 Gpe::Gpe(int cycles_per_vertex, double stall_prob, std::uint64_t seed)
     : cycles_per_vertex_(cycles_per_vertex), stall_prob_(stall_prob), seed_(seed), rng_(seed) {
   if (cycles_per_vertex < 1) throw std::invalid_argument("Gpe: cycles per vertex must be >= 1");

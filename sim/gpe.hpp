@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 
+#include "sim/blocks/counter_registry.hpp"
 #include "sim/config.hpp"
 
 namespace tessim::sim {
@@ -27,19 +28,11 @@ class SplitMix64 {
   std::uint64_t state_;
 };
 
-// Per-cycle classes of the GPE (doc §10), in priority order.
-enum class GpeClass : std::uint8_t { Busy, Stalled, Cpg, Starved };
-inline constexpr std::array<GpeClass, 4> kGpeClasses{GpeClass::Busy, GpeClass::Stalled, GpeClass::Cpg,
-                                                     GpeClass::Starved};
-const char* to_string(GpeClass c);
-
-struct GpeStats {
+// Cycles per GPE class (GpeClass, sim/blocks/counter_registry.hpp: doc §10, in priority order),
+// and the GPE's totals.
+struct GpeStats : ClassCounts<GpeClass> {
   std::uint64_t cycles = 0;
   std::uint64_t vertices = 0;  // vertices accepted
-  std::uint64_t busy = 0;      // accepting or processing a vertex
-  std::uint64_t stalled = 0;   // random stall
-  std::uint64_t cpg = 0;       // spare cycle spent on a gpe-mapped CPG
-  std::uint64_t starved = 0;   // ready, no vertex to take
   bool operator==(const GpeStats&) const = default;
 };
 
@@ -74,21 +67,17 @@ class Gpe {
       remaining_ = cycles_per_vertex_ - 1;
       ++stats_.vertices;
       c.cls = GpeClass::Busy;
-      ++stats_.busy;
     } else if (remaining_ > 0) {
       --remaining_;
       c.cls = GpeClass::Busy;
-      ++stats_.busy;
     } else if (stall) {
       c.cls = GpeClass::Stalled;
-      ++stats_.stalled;
     } else if (cpg_computing) {
       c.cls = GpeClass::Cpg;
-      ++stats_.cpg;
     } else {
       c.cls = GpeClass::Starved;
-      ++stats_.starved;
     }
+    ++stats_[c.cls];
     return c;
   }
 
@@ -106,14 +95,13 @@ class Gpe {
     stats_.cycles += n;
     if (remaining_ > 0) {
       remaining_ -= static_cast<int>(n);
-      stats_.busy += n;
       c.cls = GpeClass::Busy;
     } else {
       c.ready = true;
       c.spare = !vtx_valid;
       c.cls = cpg_computing ? GpeClass::Cpg : GpeClass::Starved;
-      (cpg_computing ? stats_.cpg : stats_.starved) += n;
     }
+    stats_[c.cls] += n;
     return c;
   }
 

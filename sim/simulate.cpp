@@ -32,10 +32,6 @@ std::uint64_t watchdog_cycles(const UnitConfig& cfg, int cpg_c) {
 
 double ratio(std::uint64_t a, std::uint64_t b) { return b == 0 ? 0.0 : static_cast<double>(a) / b; }
 
-std::uint64_t total(const TeStats& t) {
-  return t.context_limited + t.int_limited + t.busy + t.blocked_by_gpe + t.starved_by_cpg + t.idle + t.pipeline;
-}
-
 std::string percent(std::uint64_t part, std::uint64_t whole) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f%%", 100.0 * ratio(part, whole));
@@ -46,15 +42,11 @@ std::string percent(std::uint64_t part, std::uint64_t whole) {
 Timeline::Bucket run_totals(const Unit& unit, const Gpe& gpe) {
   Timeline::Bucket t;
   t.te = unit.te_class_cycles();
-  const UnitStats& s = unit.stats();
-  for (const IntBlockStats& b : s.int_blocks) t.int_busy += b.busy;
-  t.cpg_busy = s.cpg.busy;
+  const UnitCounters& s = unit.stats();
+  for (std::uint64_t busy : s.int_busy_used()) t.int_busy += busy;
+  t.cpg_busy = s.cpg[CpgClass::Busy];
   t.vertices = s.vertices_out;
-  const GpeStats& g = gpe.stats();
-  t.gpe[static_cast<std::size_t>(GpeClass::Busy)] = g.busy;
-  t.gpe[static_cast<std::size_t>(GpeClass::Stalled)] = g.stalled;
-  t.gpe[static_cast<std::size_t>(GpeClass::Cpg)] = g.cpg;
-  t.gpe[static_cast<std::size_t>(GpeClass::Starved)] = g.starved;
+  t.gpe = gpe.stats();
   return t;
 }
 
@@ -180,7 +172,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   std::uint64_t cycle = 0;
   // The TE's class counts at the end of the last accepting cycle: an interval's classes are the
   // counts at its end minus these.
-  std::array<std::uint64_t, kTeClasses.size()> interval_start{};
+  ClassCounts<TeClass> interval_start;
   bool interval_late = false;  // the GPE waited in this interval
   // The timeline reads the counters only at its bucket boundaries: one comparison per cycle.
   std::uint64_t timeline_end = r.timeline.next_boundary();
@@ -258,10 +250,8 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
       interval_late = true;
     }
     if (g.accepted) {
-      const auto& now = unit.te_class_cycles();
-      if (interval_late)
-        for (TeClass c : kTeClasses)
-          add_class(r.te_late, c, now[static_cast<std::size_t>(c)] - interval_start[static_cast<std::size_t>(c)]);
+      const ClassCounts<TeClass>& now = unit.te_class_cycles();
+      if (interval_late) r.te_late += now - interval_start;
       interval_start = now;
       interval_late = false;
     }
@@ -292,8 +282,8 @@ double cycles_per_vertex(const SimResult& r) { return ratio(r.unit.cycles, r.uni
 
 double int_utilisation(const SimResult& r) {
   std::uint64_t busy = 0;
-  for (const IntBlockStats& b : r.unit.int_blocks) busy += b.busy;
-  return ratio(busy, r.unit.cycles * r.unit.int_blocks.size());
+  for (std::uint64_t b : r.unit.int_busy_used()) busy += b;
+  return ratio(busy, r.unit.cycles * static_cast<std::uint64_t>(r.unit.int_blocks));
 }
 
 std::string bottleneck(const SimResult& r) {
@@ -302,41 +292,44 @@ std::string bottleneck(const SimResult& r) {
   const UnitConfig& c = r.config;
   char buf[320];
   // The GPE limits when it waited for a vertex no more often than the TE waited for it.
-  if (r.gpe_waited <= r.unit.te.blocked_by_gpe) {
+  if (r.gpe_waited <= r.unit.te[TeClass::BlockedByGpe]) {
     std::snprintf(buf, sizeof buf,
                   "GPE: waited for a vertex %.1f%% of cycles, TE blocked by GPE %.1f%% "
                   "(one vertex / %d cycles, busy %.1f%%)",
-                  100 * ratio(r.gpe_waited, cycles), 100 * ratio(r.unit.te.blocked_by_gpe, cycles), c.gpe_cycles,
-                  100 * ratio(r.gpe.busy, cycles));
+                  100 * ratio(r.gpe_waited, cycles), 100 * ratio(r.unit.te[TeClass::BlockedByGpe], cycles),
+                  c.gpe_cycles, 100 * ratio(r.gpe[GpeClass::Busy], cycles));
     return buf;
   }
   // Otherwise the unit delivered vertices late: the stall class of the TE that dominates the late
   // vertex intervals.
-  const TeStats& w = r.te_late;
-  const double waited = static_cast<double>(total(w));
-  const std::uint64_t top = std::max({w.context_limited, w.int_limited, w.starved_by_cpg});
+  const ClassCounts<TeClass>& w = r.te_late;
+  const double waited = static_cast<double>(w.total());
+  const std::uint64_t context_limited = w[TeClass::ContextLimited], int_limited = w[TeClass::IntLimited],
+                      starved_by_cpg = w[TeClass::StarvedByCpg];
+  const std::uint64_t top = std::max({context_limited, int_limited, starved_by_cpg});
   if (top == 0) {
     std::snprintf(buf, sizeof buf,
                   "none dominant: GPE waited %.1f%% of cycles, no TE stall class in the late vertex "
                   "intervals (busy %.1f%%, pipeline %.1f%%)",
-                  100 * ratio(r.gpe_waited, cycles), 100 * w.busy / waited, 100 * w.pipeline / waited);
-  } else if (w.starved_by_cpg == top) {
+                  100 * ratio(r.gpe_waited, cycles), 100 * w[TeClass::Busy] / waited,
+                  100 * w[TeClass::Pipeline] / waited);
+  } else if (starved_by_cpg == top) {
     std::snprintf(buf, sizeof buf,
                   "CPG: TE starved by CPG in %.1f%% of the late vertex intervals (GPE waited %.1f%% of cycles; "
                   "%s mapping, C = %d cycles per triangle, %.4g vertices per patch)",
-                  100 * w.starved_by_cpg / waited, 100 * ratio(r.gpe_waited, cycles),
+                  100 * starved_by_cpg / waited, 100 * ratio(r.gpe_waited, cycles),
                   to_string(c.cpg_mapping).c_str(), r.cpg_cycles, ratio(r.factors.vertices, r.triangles));
-  } else if (w.int_limited == top) {
+  } else if (int_limited == top) {
     std::snprintf(buf, sizeof buf,
                   "INT blocks: all %d busy with ready ops left in %.1f%% of the late vertex intervals "
                   "(GPE waited %.1f%% of cycles; utilisation %.1f%%, %.2f cycles/vertex at best)",
-                  c.int_blocks, 100 * w.int_limited / waited, 100 * ratio(r.gpe_waited, cycles),
+                  c.int_blocks, 100 * int_limited / waited, 100 * ratio(r.gpe_waited, cycles),
                   100 * int_utilisation(r), (c.normals == NormalMode::Linear ? 11.0 : 14.0) / c.int_blocks);
   } else {
     std::snprintf(buf, sizeof buf,
                   "TE contexts: oldest vertex waiting on its dependence chain in %.1f%% of the late vertex "
                   "intervals (GPE waited %.1f%% of cycles; %d contexts, INT latency %d, INT utilisation %.1f%%)",
-                  100 * w.context_limited / waited, 100 * ratio(r.gpe_waited, cycles), c.te_contexts,
+                  100 * context_limited / waited, 100 * ratio(r.gpe_waited, cycles), c.te_contexts,
                   c.int_latency, 100 * int_utilisation(r));
   }
   return buf;
@@ -344,10 +337,24 @@ std::string bottleneck(const SimResult& r) {
 
 namespace {
 
-nlohmann::json te_json(const TeStats& t) {
-  return {{"context_limited", t.context_limited}, {"int_limited", t.int_limited}, {"busy", t.busy},
-          {"blocked_by_gpe", t.blocked_by_gpe},   {"starved_by_cpg", t.starved_by_cpg}, {"idle", t.idle},
-          {"pipeline", t.pipeline}};
+// A block's classes by their keys (docs/statistics.md: "te", "cpg", "gpe", "limit.te_late").
+template <class Class>
+nlohmann::json classes_json(const ClassCounts<Class>& counts) {
+  nlohmann::json j = nlohmann::json::object();
+  for (Class c : all_of<Class>()) j[to_string(c)] = counts[c];
+  return j;
+}
+
+// The summary's line of a block's classes: each class as a share of `cycles`.
+template <class Class>
+std::string classes_line(const ClassCounts<Class>& counts, std::uint64_t cycles) {
+  const CounterBlockInfo& block = block_info(CounterEnum<Class>::block);
+  char label[16];
+  std::snprintf(label, sizeof label, "%-9s", block.label);
+  std::string s = label;
+  for (Class c : all_of<Class>())
+    s += std::string(c == Class{} ? "" : "  ") + to_string(c) + " " + percent(counts[c], cycles);
+  return s + "\n";
 }
 
 }  // namespace
@@ -395,15 +402,10 @@ nlohmann::json stats_units() {
   nlohmann::json u = {
       {"schema_version", "format version of this JSON"},
       {"triangles", "triangles (of the mesh)"},
-      {"triangles_in", "triangles (the unit's input counter; equal to triangles after a whole run)"},
-      {"vertices_out", "vertices"},
-      {"cycles", kCycles},
       {"cpg_cycles_per_triangle", "cycles/triangle"},
       {"cpg_tag_cycles", kCycles},
       {"throughput", "vertices/cycle"},
       {"cycles_per_vertex", "cycles/vertex"},
-      {"int.blocks[].busy", kCycles},
-      {"int.blocks[].idle", kCycles},
       {"int.blocks[].utilisation", kShare},
       {"int.busy", "cycles summed over the INT blocks (= operations issued)"},
       {"int.ops_per_vertex", "operations/vertex"},
@@ -435,12 +437,25 @@ nlohmann::json stats_units() {
       {"analytic.varying.full_buffer_cycles_per_vertex", "cycles/vertex"},
       {"wall_seconds", "seconds (wall clock of the simulation)"},
   };
-  // Every class counter is a number of cycles (docs/microarchitecture.md §10).
-  for (const char* c : {"busy", "blocked", "wait_gpe", "idle"}) u[std::string("cpg.") + c] = kCycles;
-  for (const char* c : {"busy", "stalled", "cpg", "starved"}) u[std::string("gpe.") + c] = kCycles;
-  for (const char* c : {"context_limited", "int_limited", "busy", "blocked_by_gpe", "starved_by_cpg", "idle", "pipeline"}) {
-    u[std::string("te.") + c] = kCycles;
-    u[std::string("limit.te_late.") + c] = "cycles (in the late vertex intervals)";
+  // Every counter of the registry (sim/blocks/counter_registry.hpp) where the JSON has it: the
+  // run's counts at the top, an INT block's in int.blocks[], the classes in their block's object,
+  // the TE's also over the late intervals, the TE's and the GPE's also per timeline bucket.
+  for (const CounterRow& row : kCounterRegistry) {
+    const std::string key = row.key;
+    switch (row.block) {
+      case CounterBlock::Run: u[key] = row.unit; break;
+      case CounterBlock::Int: u["int.blocks[]." + key] = row.unit; break;
+      case CounterBlock::Te:
+        u["te." + key] = row.unit;
+        u["limit.te_late." + key] = std::string(row.unit) + " (in the late vertex intervals)";
+        u["timeline.te." + key + "[]"] = row.unit;
+        break;
+      case CounterBlock::Cpg: u["cpg." + key] = row.unit; break;
+      case CounterBlock::Gpe:
+        u["gpe." + key] = row.unit;
+        u["timeline.gpe." + key + "[]"] = row.unit;
+        break;
+    }
   }
   for (const char* c : {"te_starved_by_cpg", "te_blocked_by_gpe", "gpe_starved_by_te"}) u[std::string("stalls.") + c] = kCycles;
   // --errors: against the mesh's float reference, and the arithmetic alone against its bound.
@@ -456,9 +471,6 @@ nlohmann::json stats_units() {
   u["timeline.buckets"] = "buckets";
   u["timeline.bucket_cycles"] = "cycles (width of every bucket but the last)";
   u["timeline.cycles[]"] = kCycles;
-  for (const char* c : {"context_limited", "int_limited", "busy", "blocked_by_gpe", "starved_by_cpg", "idle", "pipeline"})
-    u[std::string("timeline.te.") + c + "[]"] = kCycles;
-  for (const char* c : {"busy", "stalled", "cpg", "starved"}) u[std::string("timeline.gpe.") + c + "[]"] = kCycles;
   u["timeline.int_busy[]"] = "cycles summed over the INT blocks (= operations issued)";
   u["timeline.cpg_busy[]"] = kCycles;
   u["timeline.vertices_out[]"] = "vertices";
@@ -477,12 +489,15 @@ nlohmann::json stats_units() {
 
 nlohmann::json stats_json(const SimResult& r) {
   using nlohmann::json;
-  const UnitStats& u = r.unit;
+  const UnitCounters& u = r.unit;
   json blocks = json::array();
   std::uint64_t busy_total = 0;
-  for (const IntBlockStats& b : u.int_blocks) {
-    blocks.push_back({{"busy", b.busy}, {"idle", b.idle}, {"utilisation", ratio(b.busy, u.cycles)}});
-    busy_total += b.busy;
+  for (int i = 0; i < u.int_blocks; ++i) {
+    json b = {{"utilisation", ratio(u.int_busy[static_cast<std::size_t>(i)], u.cycles)}};
+    for (std::size_t row = first_row(CounterBlock::Int); row < first_row(CounterBlock::Int) + row_count(CounterBlock::Int); ++row)
+      b[kCounterRegistry[row].key] = counter_value(u, row, i);
+    blocks.push_back(b);
+    busy_total += u.int_busy[static_cast<std::size_t>(i)];
   }
   json j = {
       {"schema_version", kStatsSchemaVersion},
@@ -492,9 +507,6 @@ nlohmann::json stats_json(const SimResult& r) {
       {"config", to_json(r.config)},
       {"cpg_cycles_per_triangle", r.cpg_cycles},
       {"cpg_tag_cycles", r.cpg_tag_cycles},
-      {"cycles", u.cycles},
-      {"triangles_in", u.triangles_in},
-      {"vertices_out", u.vertices_out},
       {"throughput", throughput(r)},
       {"cycles_per_vertex", cycles_per_vertex(r)},
       {"int",
@@ -502,20 +514,14 @@ nlohmann::json stats_json(const SimResult& r) {
         {"busy", busy_total},
         {"ops_per_vertex", ratio(busy_total, u.vertices_out)},
         {"utilisation", int_utilisation(r)}}},
-      {"te", te_json(u.te)},
-      {"cpg",
-       {{"busy", u.cpg.busy}, {"blocked", u.cpg.blocked}, {"wait_gpe", u.cpg.wait_gpe}, {"idle", u.cpg.idle}}},
-      {"gpe",
-       {{"vertices", r.gpe.vertices},
-        {"busy", r.gpe.busy},
-        {"stalled", r.gpe.stalled},
-        {"cpg", r.gpe.cpg},
-        {"starved", r.gpe.starved}}},
-      {"limit", {{"gpe_waited", r.gpe_waited}, {"te_late", te_json(r.te_late)}}},
+      {"te", classes_json(u.te)},
+      {"cpg", classes_json(u.cpg)},
+      {"gpe", classes_json<GpeClass>(r.gpe)},
+      {"limit", {{"gpe_waited", r.gpe_waited}, {"te_late", classes_json(r.te_late)}}},
       {"stalls",
-       {{"te_starved_by_cpg", u.te.starved_by_cpg},
-        {"te_blocked_by_gpe", u.te.blocked_by_gpe},
-        {"gpe_starved_by_te", r.gpe.starved}}},
+       {{"te_starved_by_cpg", u.te[TeClass::StarvedByCpg]},
+        {"te_blocked_by_gpe", u.te[TeClass::BlockedByGpe]},
+        {"gpe_starved_by_te", r.gpe[GpeClass::Starved]}}},
       {"warnings", {{"degenerate_patches", r.degenerate_patches}, {"zero_normals", r.zero_normals}}},
       {"bottleneck", bottleneck(r)},
       {"workload", workload_json(r.factors, r.triangles)},
@@ -523,6 +529,9 @@ nlohmann::json stats_json(const SimResult& r) {
       {"wall_seconds", r.wall_seconds},
       {"timeline", to_json(r.timeline)},
   };
+  for (std::size_t row = first_row(CounterBlock::Run); row < first_row(CounterBlock::Run) + row_count(CounterBlock::Run); ++row)
+    j[kCounterRegistry[row].key] = counter_value(u, row);
+  j["gpe"]["vertices"] = r.gpe.vertices;
   if (r.errors) {
     j["errors"] = to_json(r.errors->mesh);
     j["errors"]["arithmetic"] = to_json(r.errors->arithmetic);
@@ -543,7 +552,7 @@ nlohmann::json stats_json(const SimResult& r) {
 
 std::string summary(const SimResult& r) {
   const UnitConfig& c = r.config;
-  const UnitStats& u = r.unit;
+  const UnitCounters& u = r.unit;
   const std::uint64_t n = u.cycles;
   std::ostringstream s;
   char buf[512];
@@ -597,22 +606,19 @@ std::string summary(const SimResult& r) {
   s << "limit    " << bottleneck(r) << "\n";
   s << "INT      utilisation " << percent(static_cast<std::uint64_t>(int_utilisation(r) * 1e6), 1000000)
     << "  per block:";
-  for (std::size_t i = 0; i < u.int_blocks.size(); ++i) s << "  " << i << ":" << percent(u.int_blocks[i].busy, n);
+  for (std::size_t i = 0; i < u.int_busy_used().size(); ++i) s << "  " << i << ":" << percent(u.int_busy[i], n);
   s << "\n";
-  s << "TE       context_limited " << percent(u.te.context_limited, n) << "  int_limited "
-    << percent(u.te.int_limited, n) << "  busy " << percent(u.te.busy, n) << "  blocked_by_gpe "
-    << percent(u.te.blocked_by_gpe, n) << "  starved_by_cpg " << percent(u.te.starved_by_cpg, n) << "  idle "
-    << percent(u.te.idle, n) << "  pipeline " << percent(u.te.pipeline, n) << "\n";
-  s << "CPG      busy " << percent(u.cpg.busy, n) << "  blocked " << percent(u.cpg.blocked, n)
-    << "  wait_gpe " << percent(u.cpg.wait_gpe, n) << "  idle " << percent(u.cpg.idle, n) << "\n";
-  s << "GPE      busy " << percent(r.gpe.busy, n) << "  stalled " << percent(r.gpe.stalled, n) << "  cpg "
-    << percent(r.gpe.cpg, n) << "  starved " << percent(r.gpe.starved, n) << "\n";
-  const TeStats& w = r.te_late;
-  const std::uint64_t gw = total(w);
-  s << "late     GPE waited " << percent(r.gpe_waited, n) << " of cycles; TE in the late intervals: context_limited "
-    << percent(w.context_limited, gw) << "  int_limited " << percent(w.int_limited, gw) << "  starved_by_cpg "
-    << percent(w.starved_by_cpg, gw) << "  busy " << percent(w.busy, gw) << "  other "
-    << percent(w.pipeline + w.idle + w.blocked_by_gpe, gw) << "\n";
+  s << classes_line(u.te, n) << classes_line(u.cpg, n) << classes_line<GpeClass>(r.gpe, n);
+  // The late intervals: the TE's three stall classes that name a limit, busy, and the rest.
+  const ClassCounts<TeClass>& w = r.te_late;
+  const std::uint64_t gw = w.total();
+  s << "late     GPE waited " << percent(r.gpe_waited, n) << " of cycles; TE in the late intervals:";
+  std::uint64_t other = gw;
+  for (TeClass c : {TeClass::ContextLimited, TeClass::IntLimited, TeClass::StarvedByCpg, TeClass::Busy}) {
+    s << (c == TeClass::ContextLimited ? " " : "  ") << to_string(c) << " " << percent(w[c], gw);
+    other -= w[c];
+  }
+  s << "  other " << percent(other, gw) << "\n";
   if (r.errors) {
     const ErrorStats& m = r.errors->mesh;
     const ArithmeticErrors& a = r.errors->arithmetic;

@@ -89,14 +89,14 @@ struct SimResult {
   std::uint64_t triangles = 0;   // input triangles of the mesh
   int cpg_cycles = 0;            // C of the configuration (doc §5)
   std::uint64_t cpg_tag_cycles = 0;  // CPG cycles scalar tags added over the run (cpg_tags)
-  UnitStats unit;
+  UnitCounters unit;
   GpeStats gpe;
   // The cycles after the GPE's first vertex in which it waited for the next one (ready, VTX
   // FIFO empty: its classes starved and cpg), and the TE's classes over the late vertex
   // intervals: the cycles after one accepted vertex up to and including the next acceptance,
   // counted when the GPE waited in them (docs/statistics.md, the limit line).
   std::uint64_t gpe_waited = 0;
-  TeStats te_late;
+  ClassCounts<TeClass> te_late;
   std::uint64_t degenerate_patches = 0;  // patches with the divide-by-zero flag
   std::uint64_t zero_normals = 0;        // output vertices whose normal vanished
   double wall_seconds = 0.0;

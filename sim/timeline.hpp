@@ -28,8 +28,8 @@ class Timeline {
 
   // Counts over some cycles: a bucket, or the run's totals from cycle 0.
   struct Bucket {
-    std::array<std::uint64_t, kTeClasses.size()> te{};    // cycles by TeClass
-    std::array<std::uint64_t, kGpeClasses.size()> gpe{};  // cycles by GpeClass
+    ClassCounts<TeClass> te;    // cycles by TeClass
+    ClassCounts<GpeClass> gpe;  // cycles by GpeClass
     std::uint64_t int_busy = 0;  // block-cycles: operations issued
     std::uint64_t cpg_busy = 0;  // cycles of CpgClass::Busy
     std::uint64_t vertices = 0;  // vertices out (popped from the VTX FIFO)

@@ -77,8 +77,8 @@ class Unit {
   std::uint64_t quiet_cycles(const UnitInputs& in) const;
   std::uint64_t skip(std::uint64_t n, const UnitInputs& in, std::uint64_t issuing_limit = kForever);
 
-  const UnitStats& stats() const { return counters_.stats(); }
-  const std::array<std::uint64_t, kTeClasses.size()>& te_class_cycles() const { return counters_.te_class_cycles(); }
+  const UnitCounters& stats() const { return counters_.stats(); }
+  const ClassCounts<TeClass>& te_class_cycles() const { return counters_.te_class_cycles(); }
   const HardwareConfig& hardware() const { return hw_; }
   int cpg_cycles() const { return cpg_.cycles(); }  // C of doc §5 for this configuration
   std::uint64_t cpg_tag_cycles() const { return cpg_.tag_cycles(); }  // added by scalar tags

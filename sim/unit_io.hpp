@@ -4,8 +4,13 @@
 #pragma once
 
 #include <array>
+#include <concepts>
 #include <cstdint>
+#include <initializer_list>
+#include <span>
+#include <type_traits>
 
+#include "sim/blocks/counter_registry.hpp"
 #include "sim/cpg.hpp"
 #include "sim/fixed.hpp"
 
@@ -57,42 +62,91 @@ struct UnitInputs {
   bool cpg_step = false;  // gpe mapping only: the GPE has a spare cycle for CPG this cycle
 };
 
-// The counters both implementations keep (docs/microarchitecture.md §10), compared exactly
-// at the end of a co-simulation.
+// The counters both implementations keep (docs/microarchitecture.md §10): the cycle model's
+// statistics and the RTL's perf_*_o outputs, compared every cycle and at the end of a
+// co-simulation. One field per registry row (sim/blocks/counter_registry.hpp) that the unit
+// counts: the run counts by their keys, INT busy per block, the TE's and the CPG's classes.
 struct UnitCounters {
-  std::uint64_t cycles = 0;
-  std::uint64_t triangles_in = 0;
-  std::uint64_t vertices_out = 0;
+#define TESSIM_RUN_FIELD(BLOCK, ID, KEY, ...) std::uint64_t KEY = 0;
+  TESSIM_RUN_COUNTERS(TESSIM_RUN_FIELD)  // cycles, triangles_in, vertices_out
+#undef TESSIM_RUN_FIELD
+  int int_blocks = 0;  // N: the entries of int_busy in use (the others stay 0)
   std::array<std::uint64_t, kMaxIntBlocks> int_busy{};
-  std::uint64_t te_context_limited = 0, te_int_limited = 0, te_busy = 0, te_blocked_by_gpe = 0,
-                te_starved_by_cpg = 0, te_idle = 0, te_pipeline = 0;
-  std::uint64_t cpg_busy = 0, cpg_blocked = 0, cpg_wait_gpe = 0, cpg_idle = 0;
+  ClassCounts<TeClass> te;
+  ClassCounts<CpgClass> cpg;
+
+  std::uint64_t int_idle(int block) const { return cycles - int_busy[static_cast<std::size_t>(block)]; }
+  std::span<const std::uint64_t> int_busy_used() const {
+    return {int_busy.data(), static_cast<std::size_t>(int_blocks)};
+  }
   bool operator==(const UnitCounters&) const = default;
 };
 
-// The scalar counters once, by name (the RTL's perf_<name>_o outputs, co-simulation reports),
-// in the order the co-simulation compares them; int_busy[0..N-1] comes after `vertices_out`.
+// Registry row `row` of k: how many instances it has (N for an INT block's row, else 1), where
+// it is stored (nullptr when derived, an INT block's idle, or not the unit's, the GPE's), and
+// its value.
+constexpr int counter_instances(const UnitCounters& k, std::size_t row) {
+  return kCounterRegistry[row].block == CounterBlock::Int ? k.int_blocks : 1;
+}
+template <class Counters>
+  requires std::same_as<std::remove_const_t<Counters>, UnitCounters>
+constexpr auto counter_slot(Counters& k, std::size_t row, int instance = 0)
+    -> std::conditional_t<std::is_const_v<Counters>, const std::uint64_t*, std::uint64_t*> {
+  const CounterRow& r = kCounterRegistry[row];
+  switch (r.block) {
+    case CounterBlock::Run:
+      switch (static_cast<RunCounter>(r.index)) {
+#define TESSIM_RUN_SLOT(BLOCK, ID, KEY, ...) \
+  case RunCounter::ID:                      \
+    return &k.KEY;
+        TESSIM_RUN_COUNTERS(TESSIM_RUN_SLOT)
+#undef TESSIM_RUN_SLOT
+      }
+      return nullptr;
+    case CounterBlock::Int:
+      return static_cast<IntClass>(r.index) == IntClass::Busy ? &k.int_busy[static_cast<std::size_t>(instance)] : nullptr;
+    case CounterBlock::Te: return &k.te.n[r.index];
+    case CounterBlock::Cpg: return &k.cpg.n[r.index];
+    case CounterBlock::Gpe: return nullptr;
+  }
+  return nullptr;
+}
+constexpr std::uint64_t counter_value(const UnitCounters& k, std::size_t row, int instance = 0) {
+  const CounterRow& r = kCounterRegistry[row];
+  if (r.block == CounterBlock::Int && static_cast<IntClass>(r.index) == IntClass::Idle) return k.int_idle(instance);
+  const std::uint64_t* slot = counter_slot(k, row, instance);
+  return slot ? *slot : 0;
+}
+// The sum of a block's classes (of INT block `instance`): the cycles, for every block of classes.
+constexpr std::uint64_t class_total(const UnitCounters& k, CounterBlock b, int instance = 0) {
+  std::uint64_t s = 0;
+  for (std::size_t row = first_row(b); row < first_row(b) + row_count(b); ++row) s += counter_value(k, row, instance);
+  return s;
+}
+// a += b, every stored counter (the chunks of a chunked run).
+constexpr void add(UnitCounters& a, const UnitCounters& b) {
+  for (std::size_t row = 0; row < kCounterRegistry.size(); ++row)
+    for (int i = 0; i < counter_instances(b, row); ++i)
+      if (std::uint64_t* slot = counter_slot(a, row, i)) *slot += counter_value(b, row, i);
+}
+
+// The unit's counters by name, for `tessim schema`: the run counts, then the TE's and the CPG's
+// classes (INT busy per block, int_busy[0..N-1], comes between them when they are compared).
 struct CounterField {
   const char* name;
-  std::uint64_t UnitCounters::*field;
+  std::size_t row;  // in kCounterRegistry
 };
-inline constexpr std::array<CounterField, 3> kRunCounters{{
-    {"cycles", &UnitCounters::cycles},
-    {"triangles_in", &UnitCounters::triangles_in},
-    {"vertices_out", &UnitCounters::vertices_out},
-}};
-inline constexpr std::array<CounterField, 11> kClassCounters{{
-    {"te_context_limited", &UnitCounters::te_context_limited},
-    {"te_int_limited", &UnitCounters::te_int_limited},
-    {"te_busy", &UnitCounters::te_busy},
-    {"te_blocked_by_gpe", &UnitCounters::te_blocked_by_gpe},
-    {"te_starved_by_cpg", &UnitCounters::te_starved_by_cpg},
-    {"te_idle", &UnitCounters::te_idle},
-    {"te_pipeline", &UnitCounters::te_pipeline},
-    {"cpg_busy", &UnitCounters::cpg_busy},
-    {"cpg_blocked", &UnitCounters::cpg_blocked},
-    {"cpg_wait_gpe", &UnitCounters::cpg_wait_gpe},
-    {"cpg_idle", &UnitCounters::cpg_idle},
-}};
+template <std::size_t N>
+constexpr std::array<CounterField, N> counter_fields(std::initializer_list<CounterBlock> blocks) {
+  std::array<CounterField, N> a{};
+  std::size_t i = 0;
+  for (CounterBlock b : blocks)
+    for (std::size_t row = first_row(b); row < first_row(b) + row_count(b); ++row)
+      a[i++] = {kCounterRegistry[row].name, row};
+  return a;
+}
+inline constexpr auto kRunCounters = counter_fields<row_count(CounterBlock::Run)>({CounterBlock::Run});
+inline constexpr auto kClassCounters =
+    counter_fields<row_count(CounterBlock::Te) + row_count(CounterBlock::Cpg)>({CounterBlock::Te, CounterBlock::Cpg});
 
 }  // namespace tessim::sim

@@ -192,23 +192,17 @@ class VerilatedUnit final : public RtlUnit {
     return v;
   }
 
+  // Every registry row with an RTL port (sim/blocks/counter_registry.hpp), read from the port of
+  // that name; rows without one stay 0 (the GPE's classes, cpg wait_gpe: the RTL's CPG is
+  // dedicated). A port named in the registry that the model lacks does not compile.
   sim::UnitCounters counters() const override {
     sim::UnitCounters k;
-    k.cycles = model_->perf_cycles_o;
-    k.triangles_in = model_->perf_tri_in_o;
-    k.vertices_out = model_->perf_vtx_out_o;
-    for (int i = 0; i < int_blocks(); ++i) k.int_busy[i] = detail::get_bits(model_->perf_int_busy_o, 64 * i, 64);
-    k.te_context_limited = model_->perf_te_context_limited_o;
-    k.te_int_limited = model_->perf_te_int_limited_o;
-    k.te_busy = model_->perf_te_busy_o;
-    k.te_blocked_by_gpe = model_->perf_te_blocked_by_gpe_o;
-    k.te_starved_by_cpg = model_->perf_te_starved_by_cpg_o;
-    k.te_idle = model_->perf_te_idle_o;
-    k.te_pipeline = model_->perf_te_pipeline_o;
-    k.cpg_busy = model_->perf_cpg_busy_o;
-    k.cpg_blocked = model_->perf_cpg_blocked_o;
-    k.cpg_wait_gpe = 0;  // the RTL implements the dedicated CPG only
-    k.cpg_idle = model_->perf_cpg_idle_o;
+    k.int_blocks = int_blocks();
+#define TESSIM_READ_PORT(BLOCK, ID, KEY, UNIT, PORT, ...) \
+  if constexpr (constexpr std::size_t row = sim::row_of_port(#PORT); row < sim::kCounterRegistry.size()) \
+    read_counter(k, row, model_->PORT);
+    TESSIM_COUNTER_REGISTRY(TESSIM_READ_PORT)
+#undef TESSIM_READ_PORT
     return k;
   }
 
@@ -270,6 +264,13 @@ class VerilatedUnit final : public RtlUnit {
   void set_wave_enabled(bool enabled) override { wave_enabled_ = enabled && fst_ != nullptr; }
 
  private:
+  // A counter port: one 64-bit counter, or one per INT block at [64i +: 64] for an INT row.
+  template <class Port>
+  void read_counter(sim::UnitCounters& k, std::size_t row, const Port& port) const {
+    for (int i = 0; i < sim::counter_instances(k, row); ++i)
+      *sim::counter_slot(k, row, i) = detail::get_bits(port, 64 * i, 64);
+  }
+
   void drive_idle() {
     model_->tri_valid_i = 0;
     model_->vtx_ready_i = 0;

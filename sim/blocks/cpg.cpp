@@ -2,16 +2,6 @@
 
 namespace tessim::sim {
 
-const char* to_string(CpgClass c) {
-  switch (c) {
-    case CpgClass::Busy: return "busy";
-    case CpgClass::Blocked: return "blocked";
-    case CpgClass::WaitGpe: return "wait_gpe";
-    case CpgClass::Idle: return "idle";
-  }
-  return "?";
-}
-
 const char* to_string(CpgAction a) {
   switch (a) {
     case CpgAction::Idle: return "idle";

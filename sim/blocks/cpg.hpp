@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 
+#include "sim/blocks/counter_registry.hpp"
 #include "sim/blocks/cp_buffer.hpp"
 #include "sim/cpg.hpp"
 
@@ -17,13 +18,9 @@ namespace tessim::sim {
 
 // What the CPG does in a cycle (finer than its statistics class, for traces).
 enum class CpgAction : std::uint8_t { Idle, Accept, Compute, WaitGpe, Write, Blocked };
-// Its statistics class (docs/microarchitecture.md §10).
-enum class CpgClass : std::uint8_t { Busy, Blocked, WaitGpe, Idle };
-inline constexpr std::array<CpgClass, 4> kCpgClasses{CpgClass::Busy, CpgClass::Blocked, CpgClass::WaitGpe,
-                                                     CpgClass::Idle};
+// Its statistics class is a CpgClass (sim/blocks/counter_registry.hpp).
 
 const char* to_string(CpgAction a);
-const char* to_string(CpgClass c);
 
 class CpgBlock {
  public:

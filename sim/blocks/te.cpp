@@ -5,19 +5,6 @@
 
 namespace tessim::sim {
 
-const char* to_string(TeClass c) {
-  switch (c) {
-    case TeClass::ContextLimited: return "context_limited";
-    case TeClass::IntLimited: return "int_limited";
-    case TeClass::Busy: return "busy";
-    case TeClass::BlockedByGpe: return "blocked_by_gpe";
-    case TeClass::StarvedByCpg: return "starved_by_cpg";
-    case TeClass::Idle: return "idle";
-    case TeClass::Pipeline: return "pipeline";
-  }
-  return "?";
-}
-
 Te::Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const NumberFormat& format)
     : n_contexts_(contexts),
       words_(OpMasks::words_for(contexts)),

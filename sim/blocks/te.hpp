@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "sim/blocks/counter_registry.hpp"
 #include "sim/blocks/cp_buffer.hpp"
 #include "sim/blocks/dpg.hpp"
 #include "sim/blocks/int_blocks.hpp"
@@ -19,13 +20,6 @@
 #include "sim/unit_io.hpp"
 
 namespace tessim::sim {
-
-// The TE's statistics class of a cycle (docs/microarchitecture.md §10), in priority order.
-enum class TeClass : std::uint8_t { ContextLimited, IntLimited, Busy, BlockedByGpe, StarvedByCpg, Idle, Pipeline };
-inline constexpr std::array<TeClass, 7> kTeClasses{TeClass::ContextLimited, TeClass::IntLimited, TeClass::Busy,
-                                                   TeClass::BlockedByGpe, TeClass::StarvedByCpg, TeClass::Idle,
-                                                   TeClass::Pipeline};
-const char* to_string(TeClass c);
 
 // One operation issued to an INT block.
 struct IssuedOp {

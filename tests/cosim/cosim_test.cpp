@@ -331,7 +331,7 @@ TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
           expect_pass(r, o);
           EXPECT_EQ(r.vertices, expected_vertices(stream));
           if (tagged) {
-            EXPECT_GT(r.model_counters.cpg_busy, 24u * sim::cpg_cycles(mode, o.unit.format, b.cpg));
+            EXPECT_GT(r.model_counters.cpg[sim::CpgClass::Busy], 24u * sim::cpg_cycles(mode, o.unit.format, b.cpg));
           }
         }
       }

@@ -38,17 +38,13 @@ UnitConfig config_of(const Case& c) {
 }
 
 void expect_class_sums(const SimResult& r) {
-  const UnitStats& u = r.unit;
-  const TeStats& t = u.te;
-  EXPECT_EQ(t.context_limited + t.int_limited + t.busy + t.blocked_by_gpe + t.starved_by_cpg + t.idle + t.pipeline,
-            u.cycles);
-  EXPECT_EQ(u.cpg.busy + u.cpg.blocked + u.cpg.wait_gpe + u.cpg.idle, u.cycles);
-  EXPECT_EQ(r.gpe.busy + r.gpe.stalled + r.gpe.cpg + r.gpe.starved, u.cycles);
+  const UnitCounters& u = r.unit;
+  EXPECT_EQ(u.te.total(), u.cycles);
+  EXPECT_EQ(u.cpg.total(), u.cycles);
+  EXPECT_EQ(r.gpe.total(), u.cycles);
   // The late intervals are cycles of the run; the GPE's waits are among its starved and cpg cycles.
-  const TeStats& l = r.te_late;
-  EXPECT_LE(l.context_limited + l.int_limited + l.busy + l.blocked_by_gpe + l.starved_by_cpg + l.idle + l.pipeline,
-            u.cycles);
-  EXPECT_LE(r.gpe_waited, r.gpe.starved + r.gpe.cpg);
+  EXPECT_LE(r.te_late.total(), u.cycles);
+  EXPECT_LE(r.gpe_waited, r.gpe[GpeClass::Starved] + r.gpe[GpeClass::Cpg]);
 }
 
 class Limiter : public ::testing::TestWithParam<Case> {};
@@ -102,7 +98,7 @@ TEST(Limiter, ContextBoundRunGainsFromContextsNotBlocks) {
   EXPECT_NEAR(cycles_per_vertex(r6), cycles_per_vertex(r5), 0.01);
   // 3.00 -> 2.80 cycles/vertex: down to the next bound, int_issue = 14 / 5.
   EXPECT_LT(cycles_per_vertex(v6), cycles_per_vertex(r5) - 0.15);
-  EXPECT_GT(r5.unit.te.context_limited, r5.unit.te.int_limited);
+  EXPECT_GT(r5.unit.te[TeClass::ContextLimited], r5.unit.te[TeClass::IntLimited]);
 }
 
 }  // namespace

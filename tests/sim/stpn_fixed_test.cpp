@@ -248,7 +248,7 @@ TEST(StpnCycleModel, TaggedRunsComputeTheFixedPointArithmeticAndTakeTheirCycles)
     // fast CPG (three lanes, r = 4) hides them behind the geometry engine.
     if (variant == CpgVariant{1, 1}) EXPECT_GT(tagged.result.unit.cycles, plain.result.unit.cycles + tag_cycles / 2);
     else EXPECT_GE(tagged.result.unit.cycles, plain.result.unit.cycles);
-    EXPECT_EQ(tagged.result.unit.cpg.busy, plain.result.unit.cpg.busy + tag_cycles);
+    EXPECT_EQ(tagged.result.unit.cpg[CpgClass::Busy], plain.result.unit.cpg[CpgClass::Busy] + tag_cycles);
 
     // Fast-forward stays exact with tags.
     const TaggedRun slow = run(mesh, cfg, false);

@@ -47,8 +47,8 @@ void expect_sums(const SimResult& r) {
   ASSERT_LE(t.size(), Timeline::kBuckets);
   ASSERT_GT(t.size(), 0u);
   std::uint64_t cycles = 0, int_busy = 0, cpg_busy = 0, vertices = 0;
-  TeStats te;
-  GpeStats gpe;
+  ClassCounts<TeClass> te;
+  ClassCounts<GpeClass> gpe;
   for (std::size_t i = 0; i < t.size(); ++i) {
     const Timeline::Bucket& b = t.bucket(i);
     const std::uint64_t n = t.cycles(i);
@@ -57,37 +57,26 @@ void expect_sums(const SimResult& r) {
     }
     EXPECT_GE(n, 1u);
     EXPECT_LE(n, t.bucket_cycles());
-    std::uint64_t te_n = 0, gpe_n = 0;
-    for (TeClass c : kTeClasses) {
-      te_n += b.te[static_cast<std::size_t>(c)];
-      add_class(te, c, b.te[static_cast<std::size_t>(c)]);
-    }
-    for (std::uint64_t g : b.gpe) gpe_n += g;
-    EXPECT_EQ(te_n, n) << "bucket " << i;
-    EXPECT_EQ(gpe_n, n) << "bucket " << i;
-    EXPECT_LE(b.int_busy, n * r.unit.int_blocks.size());
+    EXPECT_EQ(b.te.total(), n) << "bucket " << i;
+    EXPECT_EQ(b.gpe.total(), n) << "bucket " << i;
+    te += b.te;
+    gpe += b.gpe;
+    EXPECT_LE(b.int_busy, n * static_cast<std::uint64_t>(r.unit.int_blocks));
     EXPECT_LE(b.cpg_busy, n);
     EXPECT_LE(b.vertices, n);
     cycles += n;
     int_busy += b.int_busy;
     cpg_busy += b.cpg_busy;
     vertices += b.vertices;
-    gpe.busy += b.gpe[static_cast<std::size_t>(GpeClass::Busy)];
-    gpe.stalled += b.gpe[static_cast<std::size_t>(GpeClass::Stalled)];
-    gpe.cpg += b.gpe[static_cast<std::size_t>(GpeClass::Cpg)];
-    gpe.starved += b.gpe[static_cast<std::size_t>(GpeClass::Starved)];
   }
   std::uint64_t int_total = 0;
-  for (const IntBlockStats& b : r.unit.int_blocks) int_total += b.busy;
+  for (std::uint64_t busy : r.unit.int_busy_used()) int_total += busy;
   EXPECT_EQ(cycles, r.unit.cycles);
   EXPECT_EQ(te, r.unit.te);
   EXPECT_EQ(int_busy, int_total);
-  EXPECT_EQ(cpg_busy, r.unit.cpg.busy);
+  EXPECT_EQ(cpg_busy, r.unit.cpg[CpgClass::Busy]);
   EXPECT_EQ(vertices, r.unit.vertices_out);
-  EXPECT_EQ(gpe.busy, r.gpe.busy);
-  EXPECT_EQ(gpe.stalled, r.gpe.stalled);
-  EXPECT_EQ(gpe.cpg, r.gpe.cpg);
-  EXPECT_EQ(gpe.starved, r.gpe.starved);
+  EXPECT_EQ(gpe, static_cast<const ClassCounts<GpeClass>&>(r.gpe));
   // The width is the smallest power of two that fits the run into the table.
   std::uint64_t width = 1;
   while (width * Timeline::kBuckets < r.unit.cycles) width *= 2;
@@ -106,8 +95,8 @@ void expect_json_sums(const SimResult& r) {
   EXPECT_EQ(tl["buckets"].get<std::size_t>(), tl["cycles"].size());
   EXPECT_EQ(sum(tl["cycles"]), j["cycles"].get<std::uint64_t>());
   for (const auto& [k, v] : j["te"].items()) EXPECT_EQ(sum(tl["te"][k]), v.get<std::uint64_t>()) << k;
-  for (const char* k : {"busy", "stalled", "cpg", "starved"})
-    EXPECT_EQ(sum(tl["gpe"][k]), j["gpe"][k].get<std::uint64_t>()) << k;
+  for (GpeClass c : kGpeClasses)
+    EXPECT_EQ(sum(tl["gpe"][to_string(c)]), j["gpe"][to_string(c)].get<std::uint64_t>()) << to_string(c);
   EXPECT_EQ(sum(tl["int_busy"]), j["int"]["busy"].get<std::uint64_t>());
   EXPECT_EQ(sum(tl["cpg_busy"]), j["cpg"]["busy"].get<std::uint64_t>());
   EXPECT_EQ(sum(tl["vertices_out"]), j["vertices_out"].get<std::uint64_t>());

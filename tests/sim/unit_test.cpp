@@ -143,12 +143,12 @@ TEST(UnitTimeline, SingleContextSingleBlock) {
   EXPECT_EQ(r.unit.cycles, static_cast<std::uint64_t>(C + 51));
   EXPECT_EQ(r.unit.vertices_out, 3u);
   // CPG: accept + (C-1) computes + write = C+1 busy cycles, idle otherwise.
-  EXPECT_EQ(r.unit.cpg.busy, static_cast<std::uint64_t>(C + 1));
+  EXPECT_EQ(r.unit.cpg[CpgClass::Busy], static_cast<std::uint64_t>(C + 1));
   // One context with latency 1: the head never waits on a result; 9 ready L1 ops for 1 block.
-  EXPECT_EQ(r.unit.te.busy + r.unit.te.int_limited, 42u);
-  EXPECT_EQ(r.unit.te.context_limited, 0u);
-  EXPECT_EQ(r.unit.te.starved_by_cpg, static_cast<std::uint64_t>(C + 1));  // cycles 1..C+1
-  EXPECT_EQ(r.unit.te.idle, 2u);  // cycle 0 (nothing queued yet) and the last cycle
+  EXPECT_EQ(r.unit.te[TeClass::Busy] + r.unit.te[TeClass::IntLimited], 42u);
+  EXPECT_EQ(r.unit.te[TeClass::ContextLimited], 0u);
+  EXPECT_EQ(r.unit.te[TeClass::StarvedByCpg], static_cast<std::uint64_t>(C + 1));  // cycles 1..C+1
+  EXPECT_EQ(r.unit.te[TeClass::Idle], 2u);  // cycle 0 (nothing queued yet) and the last cycle
 }
 
 void expect_consistent(const SimResult& r, std::uint64_t triangles, int L, NormalMode mode);
@@ -261,7 +261,7 @@ TEST(UnitTimeline, SlowGpeSetsTheRate) {
   const std::uint64_t fill = static_cast<std::uint64_t>(r.cpg_cycles + 12);
   EXPECT_EQ(r.unit.cycles, fill + 20 * (V - 1));
   EXPECT_NEAR(throughput(r), 1.0 / 20, 1.0 / 20 * static_cast<double>(fill) / static_cast<double>(r.unit.cycles));
-  EXPECT_EQ(r.gpe.busy, 20 * (V - 1) + 1);
+  EXPECT_EQ(r.gpe[GpeClass::Busy], 20 * (V - 1) + 1);
   EXPECT_NE(bottleneck(r).find("GPE"), std::string::npos) << bottleneck(r);
 }
 
@@ -369,7 +369,7 @@ TEST(UnitBackpressure, EveryVertexExactlyOnceInOrder) {
     }
     EXPECT_EQ(got.size(), i);
     EXPECT_EQ(seen.size(), got.size()) << "duplicates, seed " << seed;
-    EXPECT_GT(r.gpe.stalled, r.unit.cycles / 4) << "stalls happened";
+    EXPECT_GT(r.gpe[GpeClass::Stalled], r.unit.cycles / 4) << "stalls happened";
   }
 }
 
@@ -407,28 +407,31 @@ TEST(UnitBackpressure, HandshakeWithArbitraryReady) {
 // Statistics (doc §10)
 
 void expect_consistent(const SimResult& r, std::uint64_t triangles, int L, NormalMode mode) {
-  const UnitStats& u = r.unit;
+  const UnitCounters& u = r.unit;
   const std::uint64_t n = u.cycles;
+  EXPECT_EQ(u.int_blocks, r.config.int_blocks);
   std::uint64_t busy = 0;
-  for (const IntBlockStats& b : u.int_blocks) {
-    EXPECT_EQ(b.busy + b.idle, n);
-    busy += b.busy;
+  for (std::uint64_t b : u.int_busy_used()) {
+    EXPECT_LE(b, n);
+    busy += b;
   }
   EXPECT_EQ(busy, static_cast<std::uint64_t>(ops_per_vertex(mode)) * u.vertices_out);
-  EXPECT_EQ(u.te.context_limited + u.te.int_limited + u.te.busy + u.te.blocked_by_gpe + u.te.starved_by_cpg +
-                u.te.idle + u.te.pipeline,
-            n);
-  EXPECT_EQ(u.cpg.busy + u.cpg.blocked + u.cpg.wait_gpe + u.cpg.idle, n);
-  EXPECT_EQ(r.gpe.busy + r.gpe.stalled + r.gpe.cpg + r.gpe.starved, n);
+  // Every block of classes of the counter registry: its classes sum to the cycles.
+  for (const CounterBlockInfo& b : kCounterBlocks) {
+    if (b.classes && b.in_unit && b.block != CounterBlock::Int) {
+      EXPECT_EQ(class_total(u, b.block), n) << b.label;
+    }
+  }
+  EXPECT_EQ(r.gpe.total(), n);
   EXPECT_EQ(r.gpe.cycles, n);
   EXPECT_EQ(r.gpe.vertices, u.vertices_out);
   EXPECT_EQ(u.triangles_in, triangles);
   EXPECT_EQ(u.vertices_out, triangles * static_cast<std::uint64_t>(pattern_vertex_count(L)));
   // Blocks 0..i-1 are used before block i: the i-th op of a cycle goes to block i.
-  for (std::size_t i = 1; i < u.int_blocks.size(); ++i) EXPECT_LE(u.int_blocks[i].busy, u.int_blocks[i - 1].busy);
+  for (std::size_t i = 1; i < u.int_busy_used().size(); ++i) EXPECT_LE(u.int_busy[i], u.int_busy[i - 1]);
   // The CPG of the dedicated mapping is busy C + 1 cycles per triangle.
   if (r.config.cpg_mapping == CpgMapping::Dedicated) {
-    EXPECT_EQ(u.cpg.busy, triangles * static_cast<std::uint64_t>(r.cpg_cycles + 1));
+    EXPECT_EQ(u.cpg[CpgClass::Busy], triangles * static_cast<std::uint64_t>(r.cpg_cycles + 1));
   }
 }
 
@@ -465,9 +468,9 @@ TEST(UnitStatistics, RealMeshDefaultConfig) {
   EXPECT_EQ(j["cycles"], r.unit.cycles);
   EXPECT_EQ(j["config"]["int_blocks"], 2);
   EXPECT_EQ(j["int"]["blocks"].size(), 2u);
-  EXPECT_EQ(j["te"]["starved_by_cpg"], r.unit.te.starved_by_cpg);
-  EXPECT_EQ(j["gpe"]["starved"], r.gpe.starved);
-  EXPECT_EQ(j["stalls"]["gpe_starved_by_te"], r.gpe.starved);
+  EXPECT_EQ(j["te"]["starved_by_cpg"], r.unit.te[TeClass::StarvedByCpg]);
+  EXPECT_EQ(j["gpe"]["starved"], r.gpe[GpeClass::Starved]);
+  EXPECT_EQ(j["stalls"]["gpe_starved_by_te"], r.gpe[GpeClass::Starved]);
   EXPECT_DOUBLE_EQ(j["cycles_per_vertex"].get<double>(), cycles_per_vertex(r));
   const std::string text = summary(r);
   EXPECT_NE(text.find("cycles/vertex"), std::string::npos);
@@ -489,11 +492,11 @@ TEST(GpeMappedCpg, SameVerticesAndExactlyCSpareCyclesPerTriangle) {
     const std::vector<VertexFx> a = run_vertices(mesh, ded, &rd);
     const std::vector<VertexFx> b = run_vertices(mesh, gpe, &rg);
     EXPECT_EQ(a, b);
-    EXPECT_EQ(rg.gpe.cpg, mesh.triangle_count() * static_cast<std::uint64_t>(C));
-    EXPECT_EQ(rd.gpe.cpg, 0u);
+    EXPECT_EQ(rg.gpe[GpeClass::Cpg], mesh.triangle_count() * static_cast<std::uint64_t>(C));
+    EXPECT_EQ(rd.gpe[GpeClass::Cpg], 0u);
     EXPECT_EQ(rg.cpg_cycles, C);
     // Every compute step is one spare GPE cycle; the CPG waited for the others.
-    EXPECT_GT(rg.unit.cpg.wait_gpe, 0u);
+    EXPECT_GT(rg.unit.cpg[CpgClass::WaitGpe], 0u);
     expect_consistent(rg, mesh.triangle_count(), 3, NormalMode::Quadratic);
   }
 }
@@ -510,7 +513,7 @@ TEST(UnitReset, MidStreamRecovers) {
   // One run from reset: every cycle's outputs and the final statistics.
   struct Trace {
     std::vector<std::tuple<bool, bool, VertexFx>> outputs;
-    UnitStats stats;
+    UnitCounters stats;
   };
   auto run = [&](Unit& unit, Gpe& gpe) {
     Trace t;
