@@ -458,6 +458,8 @@ module tess_cpg #(
   logic [3*VecW-1:0]                      stage_mid;
   logic [VecW-1:0]                        stage_b111_q;
 
+  logic [5:0]                             stage_tan_wr;  // tangent point i is staged now
+
   // The lane that computes edge e, and whether it is on edge e in this cycle.
   for (genvar i = 0; i < 6; i++) begin : g_stage_tan
     localparam int unsigned Lane = (CpgLanes == 1) ? 0 : i / 2;
@@ -470,6 +472,7 @@ module tess_cpg #(
       else if (tag_tan_wr[i]) q <= tag_tan_val[i*VecW +: VecW];
     end
     assign stage_tan[i*VecW +: VecW] = q;
+    assign stage_tan_wr[i] = hit || tag_tan_wr[i];
   end
   for (genvar e = 0; e < 3; e++) begin : g_stage_mid
     localparam int unsigned Lane = (CpgLanes == 1) ? 0 : e;
@@ -483,19 +486,43 @@ module tess_cpg #(
   end
 
   // ------------------------------------------------------------------ b111 operand
-  // x111 = 3 sum(t) - 2 sum(P) from the staged tangent points (all six are staged by then).
-  logic [3*X111W-1:0] x111;
+  // x111 = 3 sum(t) - 2 sum(P), accumulated as the tangent points are staged: -2 sum(P) when the
+  // triangle is taken, then 3 t for each tangent point in the cycle after it was staged (from the
+  // staging register, off the tangent's own path). Each of the six is staged once per triangle,
+  // the last one in step 4 of the last edge (E >= 6), so x111 is complete in the b111 cycle.
+  // The sums are modulo 2^X111W and the result fits, so the order does not change a bit.
+  // At most one tangent point is staged a cycle per lane (edge pass and tag pass alike): one of
+  // all six with one lane, one of each edge's pair {2e, 2e + 1} with three.
+  logic [5:0]         staged_d, staged_q;  // tangent point i was staged in the previous cycle
+  logic [3*X111W-1:0] x111_d, x111_q;
+  assign staged_d = stage_tan_wr;
   for (genvar c = 0; c < 3; c++) begin : g_x111
-    logic signed [SumTW-1:0] sum_t;
-    logic signed [X111W-1:0] st3, corners;
-    always_comb begin
-      sum_t = '0;
-      for (int i = 0; i < 6; i++) sum_t = sum_t + SumTW'($signed(stage_tan[i*VecW + c*W +: W]));
+    (* mem2reg *) logic signed [W-1:0] pair [3];  // the tangent point of edge e staged last cycle, or 0
+    logic signed [SumTW-1:0] staged_sum;
+    logic signed [X111W-1:0] corners;
+    for (genvar e = 0; e < 3; e++) begin : g_pair
+      assign pair[e] = (staged_q[2 * e] ? stage_tan[2 * e * VecW + c * W +: W] : '0)
+                     | (staged_q[2 * e + 1] ? stage_tan[(2 * e + 1) * VecW + c * W +: W] : '0);
     end
-    assign st3     = X111W'(sum_t) * $signed(X111W'(3));
-    assign corners = X111W'($signed(p_q[0][c*W +: W])) + X111W'($signed(p_q[1][c*W +: W]))
-                   + X111W'($signed(p_q[2][c*W +: W]));
-    assign x111[c*X111W +: X111W] = st3 - (corners <<< 1);
+    if (CpgLanes == 1) begin : g_one
+      logic signed [W-1:0] only;  // at most one pair is not 0
+      assign only       = pair[0] | pair[1] | pair[2];
+      assign staged_sum = SumTW'(only);
+    end else begin : g_three
+      assign staged_sum = SumTW'(pair[0]) + SumTW'(pair[1]) + SumTW'(pair[2]);
+    end
+    assign corners = X111W'($signed(tri_i[c*W +: W])) + X111W'($signed(tri_i[3*W + c*W +: W]))
+                   + X111W'($signed(tri_i[6*W + c*W +: W]));
+    assign x111_d[c*X111W +: X111W] = accept ? -(corners <<< 1)
+                                    : x111_q[c*X111W +: X111W] + X111W'(staged_sum) * $signed(X111W'(3));
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) staged_q <= '0;
+    else staged_q <= staged_d;
+  end
+  // Data: set when the triangle is taken, read in its b111 cycle.
+  always_ff @(posedge clk_i) begin
+    x111_q <= x111_d;
   end
 
   // ------------------------------------------------------------------ edge lanes
@@ -540,7 +567,7 @@ module tess_cpg #(
       .na_i          (na),
       .nb_i          (nb),
       .b111_i        ((e == 0) && in_b111),
-      .x111_i        (x111),
+      .x111_i        (x111_q),
       .tangent_o     (lane_tangent[e*VecW +: VecW]),
       .tangent_a_o   (lane_tan_a[e]),
       .tangent_b_o   (lane_tan_b[e]),
@@ -618,6 +645,23 @@ module tess_cpg #(
   assign buf_wr_o    = write;
 
 `ifndef SYNTHESIS
+  // The accumulated operand is 3 sum(t) - 2 sum(P) of the six staged tangent points.
+  logic [3*X111W-1:0] x111_sum;
+  for (genvar c = 0; c < 3; c++) begin : g_x111_sum
+    logic signed [SumTW-1:0] sum_t;
+    always_comb begin
+      sum_t = '0;
+      for (int i = 0; i < 6; i++) sum_t = sum_t + SumTW'($signed(stage_tan[i*VecW + c*W +: W]));
+    end
+    assign x111_sum[c*X111W +: X111W] = X111W'(sum_t) * $signed(X111W'(3))
+      - ((X111W'($signed(p_q[0][c*W +: W])) + X111W'($signed(p_q[1][c*W +: W])) + X111W'($signed(p_q[2][c*W +: W]))) <<< 1);
+  end
+  always_ff @(posedge clk_i) begin
+    if (rst_ni && in_b111) begin
+      assert (x111_q == x111_sum) else $error("tess_cpg: accumulated b111 operand is not 3 sum(t) - 2 sum(P)");
+    end
+  end
+
   always_ff @(posedge clk_i) begin
     if (rst_ni) begin
       assert (mode_i == tess_pkg::ModeQuadratic || mode_i == tess_pkg::ModeReflect || mode_linear)
