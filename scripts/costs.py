@@ -164,6 +164,7 @@ def main(argv):
     cache = Path(args.cache)
     results = {}
     missing = []
+    yosys_cost.elaborate_all([dict(c) for c in configs], jobs=args.jobs)
     for c in configs:
         try:
             results[c] = yosys_cost.cost(dict(c), cache, xilinx=xilinx, require_cached=True)

@@ -259,6 +259,20 @@ def elaborate(rtl_dir, params, work):
     return _ELABORATED[memo]
 
 
+def elaborate_all(param_sets, rtl_dir=REPO / "rtl", jobs=2):
+    """Elaborates several configurations, `jobs` Yosys processes at a time, into the memo: the
+    elaboration is most of what composing a configuration from recorded records costs."""
+    defaults = package_defaults(rtl_dir)
+
+    def one(params):
+        params = {k: int(v) for k, v in params.items() if int(v) != defaults.get(k)}
+        with tempfile.TemporaryDirectory(prefix="tessim-elaborate-") as tmp:
+            elaborate(rtl_dir, params, tmp)
+
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        list(pool.map(one, param_sets))
+
+
 def _elaborate(sources, params, work):
     sources = " ".join(str(p) for p in sources)
     chparam = "".join(f"chparam -set {k} {v} {TOP}\n" for k, v in params.items())
