@@ -187,16 +187,18 @@ def main(argv):
     if args.cached_only:
         missing = []
     start = time.monotonic()
-    for i, c in enumerate(missing):
-        print(f"costs.py: [{i + 1}/{len(missing)}] {describe(c)}: synthesizing its missing module records ...",
-              file=sys.stderr, flush=True)
+    if missing:
+        # Every record any configuration lacks, each once, args.jobs Yosys processes at a time.
         try:
-            results[c] = yosys_cost.cost(dict(c), cache, xilinx=xilinx, jobs=args.jobs, log=sys.stderr)
+            n = yosys_cost.synthesize_missing([dict(c) for c in missing], cache, xilinx=xilinx, jobs=args.jobs,
+                                              log=sys.stderr)
+            for c in missing:
+                results[c] = yosys_cost.cost(dict(c), cache, xilinx=xilinx, require_cached=True)
         except (yosys_cost.CostError, OSError) as e:
-            print(f"costs.py: error: {describe(c)}: {e}", file=sys.stderr)
+            print(f"costs.py: error: {e}", file=sys.stderr)
             return 1
-        print(f"costs.py: [{i + 1}/{len(missing)}] {results[c]['synthesized']} records, "
-              f"{sweep.fmt_time(time.monotonic() - start)} so far", file=sys.stderr, flush=True)
+        print(f"costs.py: {n} records synthesized for {len(missing)} configurations in "
+              f"{sweep.fmt_time(time.monotonic() - start)}", file=sys.stderr, flush=True)
 
     costed = 0
     for r in rows:

@@ -607,6 +607,40 @@ def compose(records, counts):
     return out
 
 
+def synthesize_missing(param_sets, cache, rtl_dir=REPO / "rtl", jobs=2, xilinx=True, log=None):
+    """Synthesizes every record that any of the configurations lacks, each once, `jobs` at a time
+    (largest first); returns how many."""
+    defaults = package_defaults(rtl_dir)
+    yosys = yosys_version()
+    cache = Path(cache)
+    todo = {}  # key -> (module base, derived name, record text)
+    with tempfile.TemporaryDirectory(prefix="tessim-cost-") as tmp:
+        for params in param_sets:
+            params = {k: int(v) for k, v in params.items() if int(v) != defaults.get(k)}
+            modules = elaborate(rtl_dir, params, tmp)
+            for name in instance_counts(modules, top_name(modules)):
+                text, boxes = record_text(modules, name)
+                key = record_key(text, yosys, xilinx)
+                if key not in todo and not (cache / f"{key}.json").exists():
+                    todo[key] = (modules[name].base, name, text, boxes)
+
+    def work(key):
+        base, name, text, boxes = todo[key]
+        with tempfile.TemporaryDirectory(prefix="tessim-record-") as rec_tmp:
+            result = synthesize_record(name, text, boxes, xilinx, rec_tmp)
+        write_record(cache / f"{key}.json", {"schema": RECORD_SCHEMA, "module": base, "derived": name,
+                                             "yosys": yosys, "xilinx": xilinx, "result": result})
+        if log:
+            print(f"  {base:<14} {result['transistors']:>9} transistors, depth {result['depth']:>3}"
+                  f" ({result['seconds']} s)", file=log, flush=True)
+
+    if log and todo:
+        print(f"yosys_cost: {len(todo)} records to synthesize", file=log, flush=True)
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        list(pool.map(work, sorted(todo, key=lambda k: -len(todo[k][2]))))
+    return len(todo)
+
+
 def cost(params, cache, rtl_dir=REPO / "rtl", jobs=2, xilinx=True, require_cached=False, log=None):
     """Composed cost of tess_unit with `params` (tess_unit parameter -> value). Synthesizes the
     records the cache lacks (or raises CostError naming them with require_cached)."""
