@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "model/d3d11_pattern.hpp"
+#include "sim/blocks/counter_registry.hpp"
 #include "sim/cpg.hpp"
 #include "sim/host.hpp"
 
@@ -23,7 +24,8 @@ constexpr auto Tri = PortItem::Triangle;
 constexpr auto Vtx = PortItem::Vertex;
 constexpr auto None = PortItem::None;
 
-const std::array<Port, 39> kPorts{{
+// The data and control ports, in declaration order; the perf_*_o outputs follow them.
+constexpr std::array<Port, 25> kIoPorts{{
     {"clk_i", In, bits(1), None, false, "clock"},
     {"rst_ni", In, bits(1), None, false, "asynchronous reset, active low"},
     {"mode_i", In, bits(pkg::kModeBits), None, false, "normal mode (codes), static during a run"},
@@ -51,22 +53,34 @@ const std::array<Port, 39> kPorts{{
     {"vtx_id_o", Out, bits(pkg::kIdBits), Vtx, false, "patch id"},
     {"vtx_last_o", Out, bits(1), Vtx, false, "last vertex of its patch"},
     {"vtx_flags_o", Out, bits(pkg::kFlagBits), Vtx, false, "flag bits of the patch's control points (codes)"},
-    {"perf_cycles_o", Out, counter, None, false, "counter (docs/statistics.md)"},
-    {"perf_tri_in_o", Out, counter, None, false, "counter"},
-    {"perf_vtx_out_o", Out, counter, None, false, "counter"},
-    {"perf_int_busy_o", Out, {{{pkg::kCounterBits, kVarIntBlocks}}}, None, false,
-     "busy cycles of INT block i at [64i +: 64]"},
-    {"perf_te_context_limited_o", Out, counter, None, false, "counter"},
-    {"perf_te_int_limited_o", Out, counter, None, false, "counter"},
-    {"perf_te_busy_o", Out, counter, None, false, "counter"},
-    {"perf_te_blocked_by_gpe_o", Out, counter, None, false, "counter"},
-    {"perf_te_starved_by_cpg_o", Out, counter, None, false, "counter"},
-    {"perf_te_idle_o", Out, counter, None, false, "counter"},
-    {"perf_te_pipeline_o", Out, counter, None, false, "counter"},
-    {"perf_cpg_busy_o", Out, counter, None, false, "counter"},
-    {"perf_cpg_blocked_o", Out, counter, None, false, "counter"},
-    {"perf_cpg_idle_o", Out, counter, None, false, "counter"},
 }};
+
+// The counter outputs: the registry's rows with a port, in its order (the RTL declares them in
+// that order). An INT block row is N counters side by side.
+constexpr std::size_t kPerfPortCount = [] {
+  std::size_t n = 0;
+  for (const CounterRow& r : kCounterRegistry) n += r.has_port();
+  return n;
+}();
+static_assert(row_count(CounterBlock::Int) == 2 && kCounterRegistry[first_row(CounterBlock::Int)].has_port() &&
+                  !kCounterRegistry[first_row(CounterBlock::Int) + 1].has_port() && pkg::kCounterBits == 64,
+              "perf_port's text for the INT block row assumes one ported INT row (busy) of 64-bit counters");
+
+constexpr Port perf_port(const CounterRow& r, bool first) {
+  if (r.block == CounterBlock::Int)
+    return {r.port.data(), Out, {{{pkg::kCounterBits, kVarIntBlocks}}}, None, false,
+            "busy cycles of INT block i at [64i +: 64]"};
+  return {r.port.data(), Out, counter, None, false, first ? "counter (docs/statistics.md)" : "counter"};
+}
+
+constexpr auto kPorts = [] {
+  std::array<Port, kIoPorts.size() + kPerfPortCount> a{};
+  std::size_t i = 0;
+  for (const Port& p : kIoPorts) a[i++] = p;
+  for (const CounterRow& r : kCounterRegistry)
+    if (r.has_port()) a[i] = perf_port(r, i == kIoPorts.size()), ++i;
+  return a;
+}();
 
 constexpr std::array<std::pair<WidthVar, const char*>, 4> kVarNames{{
     {kVarW, "W"}, {kVarBaryBits, "bary_bits"}, {kVarIntBlocks, "int_blocks"}, {kVarCpgTags, "cpg_tags"}}};
