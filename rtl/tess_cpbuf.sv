@@ -46,6 +46,23 @@ module tess_cpbuf #(
 
   // The three transitions need different start states, so they never hit one buffer in
   // the same cycle.
+  (* mem2reg *) logic [1:0] state_d [2];
+  logic       wr_ptr_d, rd_ptr_d;
+  always_comb begin
+    for (int b = 0; b < 2; b++) state_d[b] = state_q[b];
+    wr_ptr_d = wr_ptr_q;
+    rd_ptr_d = rd_ptr_q;
+    if (wr_i) begin
+      state_d[wr_ptr_q] = tess_pkg::BufFull;
+      wr_ptr_d          = !wr_ptr_q;
+    end
+    if (drain_i) begin
+      state_d[rd_ptr_q] = tess_pkg::BufDraining;
+      rd_ptr_d          = !rd_ptr_q;
+    end
+    if (release_i) state_d[release_buf_i] = tess_pkg::BufEmpty;
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       state_q[0] <= tess_pkg::BufEmpty;
@@ -53,25 +70,42 @@ module tess_cpbuf #(
       wr_ptr_q   <= 1'b0;
       rd_ptr_q   <= 1'b0;
     end else begin
-      if (wr_i) begin
-        state_q[wr_ptr_q] <= tess_pkg::BufFull;
-        wr_ptr_q          <= !wr_ptr_q;
-      end
-      if (drain_i) begin
-        state_q[rd_ptr_q] <= tess_pkg::BufDraining;
-        rd_ptr_q          <= !rd_ptr_q;
-      end
-      if (release_i) state_q[release_buf_i] <= tess_pkg::BufEmpty;
+      state_q[0] <= state_d[0];
+      state_q[1] <= state_d[1];
+      wr_ptr_q   <= wr_ptr_d;
+      rd_ptr_q   <= rd_ptr_d;
     end
   end
 
+  // The buffers' contents: written by the CPG, not reset (read only while FULL or DRAINING).
+  (* mem2reg *) logic [30*CoordWidth-1:0]        b_d [2];
+  (* mem2reg *) logic [18*CoordWidth-1:0]        n_d [2];
+  (* mem2reg *) logic [tess_pkg::PatchBits-1:0]  patch_d [2];
+  (* mem2reg *) logic [tess_pkg::IdBits-1:0]     id_d [2];
+  (* mem2reg *) logic [tess_pkg::FlagBits-1:0]   flags_d [2];
+  always_comb begin
+    for (int b = 0; b < 2; b++) begin
+      b_d[b]     = b_q[b];
+      n_d[b]     = n_q[b];
+      patch_d[b] = patch_q[b];
+      id_d[b]    = id_q[b];
+      flags_d[b] = flags_q[b];
+      if (wr_i && wr_ptr_q == 1'(b)) begin
+        b_d[b]     = wr_b_i;
+        n_d[b]     = wr_n_i;
+        patch_d[b] = wr_patch_i;
+        id_d[b]    = wr_id_i;
+        flags_d[b] = wr_flags_i;
+      end
+    end
+  end
   always_ff @(posedge clk_i) begin
-    if (wr_i) begin
-      b_q[wr_ptr_q]     <= wr_b_i;
-      n_q[wr_ptr_q]     <= wr_n_i;
-      patch_q[wr_ptr_q] <= wr_patch_i;
-      id_q[wr_ptr_q]    <= wr_id_i;
-      flags_q[wr_ptr_q] <= wr_flags_i;
+    for (int b = 0; b < 2; b++) begin
+      b_q[b]     <= b_d[b];
+      n_q[b]     <= n_d[b];
+      patch_q[b] <= patch_d[b];
+      id_q[b]    <= id_d[b];
+      flags_q[b] <= flags_d[b];
     end
   end
 

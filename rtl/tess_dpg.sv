@@ -94,34 +94,55 @@ module tess_dpg #(
   assign uni_last      = (k_q == l_i);
   assign row_continues = ({1'b0, j_q} + {1'b0, k_q} + 8'd1 <= {1'b0, l_i});
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      j_q <= '0;
-      k_q <= '0;
-    end else if (consume_i && !d3d11) begin
+  logic [LBits-1:0] j_d, k_d;
+  logic [B:0]       u_d, v_d;
+  logic [RemW-1:0]  ru_d, rv_d;
+  always_comb begin
+    j_d = j_q;
+    k_d = k_q;
+    if (consume_i && !d3d11) begin
       if (uni_last) begin
-        j_q <= '0;
-        k_q <= '0;
+        j_d = '0;
+        k_d = '0;
       end else if (row_continues) begin
-        j_q <= j_q + LBits'(1);
+        j_d = j_q + LBits'(1);
       end else begin
-        j_q <= '0;
-        k_q <= k_q + LBits'(1);
+        j_d = '0;
+        k_d = k_q + LBits'(1);
+      end
+    end
+  end
+  // Weight registers: read only for an index > 0, which was reached by a step that wrote them.
+  always_comb begin
+    u_d  = u_q;
+    ru_d = ru_q;
+    v_d  = v_q;
+    rv_d = rv_q;
+    if (consume_i && !d3d11 && !uni_last) begin
+      if (row_continues) begin
+        u_d  = u_next;
+        ru_d = ru_next;
+      end else begin
+        v_d  = v_next;
+        rv_d = rv_next;
       end
     end
   end
 
-  // Weight registers: read only for an index > 0, which was reached by a step that wrote them.
-  always_ff @(posedge clk_i) begin
-    if (consume_i && !d3d11 && !uni_last) begin
-      if (row_continues) begin
-        u_q  <= u_next;
-        ru_q <= ru_next;
-      end else begin
-        v_q  <= v_next;
-        rv_q <= rv_next;
-      end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      j_q <= '0;
+      k_q <= '0;
+    end else begin
+      j_q <= j_d;
+      k_q <= k_d;
     end
+  end
+  always_ff @(posedge clk_i) begin
+    u_q  <= u_d;
+    ru_q <= ru_d;
+    v_q  <= v_d;
+    rv_q <= rv_d;
   end
 
   // ------------------------------------------------------------------ D3D11 walk
@@ -181,6 +202,48 @@ module tess_dpg #(
   logic d3d_last;
   assign d3d_last = (index_q == point_count - XW'(1));
 
+  logic [5:0]    ring_d;
+  logic [1:0]    edge_d;
+  logic [6:0]    p_d, ring_last_d;
+  logic [16:0]   perp_d, shift_d;
+  logic [XW-1:0] index_d;
+  always_comb begin
+    ring_d      = ring_q;
+    edge_d      = edge_q;
+    p_d         = p_q;
+    index_d     = index_q;
+    ring_last_d = ring_last_q;
+    perp_d      = perp_q;
+    shift_d     = shift_q;
+    if (consume_i) begin
+      index_d = last_o ? '0 : index_q + XW'(1);
+      if (d3d11) begin
+        if (d3d_last) begin
+          ring_d = '0;
+          edge_d = '0;
+          p_d    = '0;
+        end else if (!centre) begin
+          if (p_q + 7'd1 != edge_end) begin
+            p_d = p_q + 7'd1;
+          end else if (edge_q != 2'd2) begin
+            p_d    = 7'(ring_q);
+            edge_d = edge_q + 2'd1;
+          end else if (7'(next_ring) < (n_inner >> 1)) begin
+            ring_d      = next_ring;
+            edge_d      = '0;
+            p_d         = 7'(next_ring);
+            ring_last_d = n_inner - 7'd1 - 7'(next_ring);
+            perp_d      = next_perp;
+            shift_d     = (next_perp + 17'd1) >> 1;
+          end else begin  // the centre of an even pattern, a ring of its own
+            ring_d = next_ring;
+            edge_d = 2'd3;
+          end
+        end
+      end
+    end
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       ring_q      <= '0;
@@ -190,32 +253,14 @@ module tess_dpg #(
       ring_last_q <= '0;
       perp_q      <= '0;
       shift_q     <= '0;
-    end else if (consume_i) begin
-      index_q <= last_o ? '0 : index_q + XW'(1);
-      if (d3d11) begin
-        if (d3d_last) begin
-          ring_q <= '0;
-          edge_q <= '0;
-          p_q    <= '0;
-        end else if (!centre) begin
-          if (p_q + 7'd1 != edge_end) begin
-            p_q <= p_q + 7'd1;
-          end else if (edge_q != 2'd2) begin
-            p_q    <= 7'(ring_q);
-            edge_q <= edge_q + 2'd1;
-          end else if (7'(next_ring) < (n_inner >> 1)) begin
-            ring_q      <= next_ring;
-            edge_q      <= '0;
-            p_q         <= 7'(next_ring);
-            ring_last_q <= n_inner - 7'd1 - 7'(next_ring);
-            perp_q      <= next_perp;
-            shift_q     <= (next_perp + 17'd1) >> 1;
-          end else begin  // the centre of an even pattern, a ring of its own
-            ring_q <= next_ring;
-            edge_q <= 2'd3;
-          end
-        end
-      end
+    end else begin
+      ring_q      <= ring_d;
+      edge_q      <= edge_d;
+      p_q         <= p_d;
+      index_q     <= index_d;
+      ring_last_q <= ring_last_d;
+      perp_q      <= perp_d;
+      shift_q     <= shift_d;
     end
   end
 

@@ -33,22 +33,35 @@ module tess_fifo #(
   assign rd_ptr_next = (rd_ptr_q == PtrW'(Depth - 1)) ? '0 : rd_ptr_q + PtrW'(1);
   assign wr_ptr_next = (wr_ptr_q == PtrW'(Depth - 1)) ? '0 : wr_ptr_q + PtrW'(1);
 
+  logic [PtrW-1:0] rd_ptr_d, wr_ptr_d;
+  logic [CntW-1:0] count_d;
+  always_comb begin
+    wr_ptr_d = do_push ? wr_ptr_next : wr_ptr_q;
+    rd_ptr_d = do_pop ? rd_ptr_next : rd_ptr_q;
+    count_d  = count_q;
+    if (do_push && !do_pop) count_d = count_q + CntW'(1);
+    else if (do_pop && !do_push) count_d = count_q - CntW'(1);
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       rd_ptr_q <= '0;
       wr_ptr_q <= '0;
       count_q  <= '0;
     end else begin
-      if (do_push) wr_ptr_q <= wr_ptr_next;
-      if (do_pop) rd_ptr_q <= rd_ptr_next;
-      if (do_push && !do_pop) count_q <= count_q + CntW'(1);
-      else if (do_pop && !do_push) count_q <= count_q - CntW'(1);
+      rd_ptr_q <= rd_ptr_d;
+      wr_ptr_q <= wr_ptr_d;
+      count_q  <= count_d;
     end
   end
 
   // Storage is not reset: an entry is only read after it has been written.
+  (* mem2reg *) logic [Width-1:0] mem_d [Depth];
+  always_comb begin
+    for (int i = 0; i < Depth; i++) mem_d[i] = (do_push && wr_ptr_q == PtrW'(i)) ? data_i : mem_q[i];
+  end
   always_ff @(posedge clk_i) begin
-    if (do_push) mem_q[wr_ptr_q] <= data_i;
+    for (int i = 0; i < Depth; i++) mem_q[i] <= mem_d[i];
   end
 
   assign data_o  = mem_q[rd_ptr_q];

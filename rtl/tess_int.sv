@@ -55,20 +55,27 @@ module tess_int #(
   logic                stage_valid;
   logic [TagWidth-1:0] stage_tag;
   if (Latency >= 2) begin : g_mul_reg
-    (* mem2reg *) logic [ProdW-1:0] prod_q [3][3];
-    logic                valid_q;
-    logic [TagWidth-1:0] tag_q;
+    (* mem2reg *) logic [ProdW-1:0] prod_d [3][3], prod_q [3][3];
+    logic                valid_d, valid_q;
+    logic [TagWidth-1:0] tag_d, tag_q;
+    assign valid_d = valid_i;
+    assign tag_d   = tag_i;
+    for (genvar c = 0; c < 3; c++) begin : g_prod_d
+      for (genvar o = 0; o < 3; o++) begin : g_o
+        assign prod_d[c][o] = prod[c][o];
+      end
+    end
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         valid_q <= 1'b0;
       end else begin
-        valid_q <= valid_i;
+        valid_q <= valid_d;
       end
     end
     always_ff @(posedge clk_i) begin
-      tag_q <= tag_i;
+      tag_q <= tag_d;
       for (int c = 0; c < 3; c++) begin
-        for (int o = 0; o < 3; o++) prod_q[c][o] <= prod[c][o];
+        for (int o = 0; o < 3; o++) prod_q[c][o] <= prod_d[c][o];
       end
     end
     for (genvar c = 0; c < 3; c++) begin : g_c
@@ -106,23 +113,30 @@ module tess_int #(
   // Further Latency - 2 registers delay the result.
   if (Latency >= 3) begin : g_out_regs
     localparam int unsigned Extra = Latency - 2;
-    (* mem2reg *) logic                valid_q [Extra];
-    (* mem2reg *) logic [TagWidth-1:0] tag_q [Extra];
-    (* mem2reg *) logic [3*W-1:0]      res_q [Extra];
+    (* mem2reg *) logic                valid_d [Extra], valid_q [Extra];
+    (* mem2reg *) logic [TagWidth-1:0] tag_d [Extra], tag_q [Extra];
+    (* mem2reg *) logic [3*W-1:0]      res_d [Extra], res_q [Extra];
+    always_comb begin
+      valid_d[0] = stage_valid;
+      tag_d[0]   = stage_tag;
+      res_d[0]   = res;
+      for (int i = 1; i < Extra; i++) begin
+        valid_d[i] = valid_q[i-1];
+        tag_d[i]   = tag_q[i-1];
+        res_d[i]   = res_q[i-1];
+      end
+    end
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         for (int i = 0; i < Extra; i++) valid_q[i] <= 1'b0;
       end else begin
-        valid_q[0] <= stage_valid;
-        for (int i = 1; i < Extra; i++) valid_q[i] <= valid_q[i-1];
+        for (int i = 0; i < Extra; i++) valid_q[i] <= valid_d[i];
       end
     end
     always_ff @(posedge clk_i) begin
-      tag_q[0] <= stage_tag;
-      res_q[0] <= res;
-      for (int i = 1; i < Extra; i++) begin
-        tag_q[i] <= tag_q[i-1];
-        res_q[i] <= res_q[i-1];
+      for (int i = 0; i < Extra; i++) begin
+        tag_q[i] <= tag_d[i];
+        res_q[i] <= res_d[i];
       end
     end
     assign valid_o = valid_q[Extra-1];

@@ -266,16 +266,27 @@ module tess_te #(
                   head_nrm, head_pos};
 
   // ------------------------------------------------------------------ queue state
+  logic [IdxW-1:0] head_d, tail_d;
+  logic [CntW-1:0] count_d;
+  always_comb begin
+    tail_d  = tail_q;
+    head_d  = head_q;
+    count_d = count_q;
+    if (alloc) tail_d = (tail_q == IdxW'(V - 1)) ? '0 : tail_q + IdxW'(1);
+    if (retire) head_d = (head_q == IdxW'(V - 1)) ? '0 : head_q + IdxW'(1);
+    if (alloc && !retire) count_d = count_q + CntW'(1);
+    else if (retire && !alloc) count_d = count_q - CntW'(1);
+  end
+
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_q  <= '0;
       tail_q  <= '0;
       count_q <= '0;
     end else begin
-      if (alloc) tail_q <= (tail_q == IdxW'(V - 1)) ? '0 : tail_q + IdxW'(1);
-      if (retire) head_q <= (head_q == IdxW'(V - 1)) ? '0 : head_q + IdxW'(1);
-      if (alloc && !retire) count_q <= count_q + CntW'(1);
-      else if (retire && !alloc) count_q <= count_q - CntW'(1);
+      head_q  <= head_d;
+      tail_q  <= tail_d;
+      count_q <= count_d;
     end
   end
 
@@ -298,32 +309,73 @@ module tess_te #(
       end
     end
 
-    always_ff @(posedge clk_i) begin
+    // The point and patch fields: taken at allocation, held until the context is allocated again.
+    logic [B:0]         w_d, u_d, v_d;
+    logic [LBits-1:0]   j_d, k_d, l_d;
+    logic [tess_pkg::IndexBits-1:0] index_d;
+    logic [IdBits-1:0]  id_d;
+    logic [FlagW-1:0]   flags_d;
+    logic               last_d, buf_d;
+    logic [NumOps-1:0]  issued_d, done_d;
+    always_comb begin
       if (alloc_here) begin
-        ctx_w_q[x]     <= dpg_w;
-        ctx_u_q[x]     <= dpg_u;
-        ctx_v_q[x]     <= dpg_v;
-        ctx_j_q[x]     <= dpg_j;
-        ctx_k_q[x]     <= dpg_k;
-        ctx_l_q[x]     <= rd_l;
-        ctx_index_q[x] <= dpg_index;
-        ctx_id_q[x]    <= rd_id_i;
-        ctx_flags_q[x] <= rd_flags_i;
-        ctx_last_q[x]  <= dpg_last;
-        ctx_buf_q[x]   <= rd_ptr_i;
-        issued_q[x]    <= mode_linear ? tess_pkg::LinearSkipOps : '0;
-        done_q[x]      <= mode_linear ? tess_pkg::LinearSkipOps : '0;
+        w_d      = dpg_w;
+        u_d      = dpg_u;
+        v_d      = dpg_v;
+        j_d      = dpg_j;
+        k_d      = dpg_k;
+        l_d      = rd_l;
+        index_d  = dpg_index;
+        id_d     = rd_id_i;
+        flags_d  = rd_flags_i;
+        last_d   = dpg_last;
+        buf_d    = rd_ptr_i;
+        issued_d = mode_linear ? tess_pkg::LinearSkipOps : '0;
+        done_d   = mode_linear ? tess_pkg::LinearSkipOps : '0;
       end else begin
-        issued_q[x] <= issued_q[x] | issue_set;
-        done_q[x]   <= done_q[x] | done_set;
+        w_d      = ctx_w_q[x];
+        u_d      = ctx_u_q[x];
+        v_d      = ctx_v_q[x];
+        j_d      = ctx_j_q[x];
+        k_d      = ctx_k_q[x];
+        l_d      = ctx_l_q[x];
+        index_d  = ctx_index_q[x];
+        id_d     = ctx_id_q[x];
+        flags_d  = ctx_flags_q[x];
+        last_d   = ctx_last_q[x];
+        buf_d    = ctx_buf_q[x];
+        issued_d = issued_q[x] | issue_set;
+        done_d   = done_q[x] | done_set;
       end
     end
 
+    always_ff @(posedge clk_i) begin
+      ctx_w_q[x]     <= w_d;
+      ctx_u_q[x]     <= u_d;
+      ctx_v_q[x]     <= v_d;
+      ctx_j_q[x]     <= j_d;
+      ctx_k_q[x]     <= k_d;
+      ctx_l_q[x]     <= l_d;
+      ctx_index_q[x] <= index_d;
+      ctx_id_q[x]    <= id_d;
+      ctx_flags_q[x] <= flags_d;
+      ctx_last_q[x]  <= last_d;
+      ctx_buf_q[x]   <= buf_d;
+      issued_q[x]    <= issued_d;
+      done_q[x]      <= done_d;
+    end
+
+    // A temporary takes the result written back for it (an op is issued once: one block at most).
     for (genvar o = 0; o < NumOps; o++) begin : g_temp
-      always_ff @(posedge clk_i) begin
+      logic [3*W-1:0] temp_d;
+      always_comb begin
+        temp_d = temp_q[x][o];
         for (int i = 0; i < N; i++) begin
-          if (wb_valid[i] && wb_tag[i] == {IdxW'(x), OpW'(o)}) temp_q[x][o] <= wb_res[i];
+          if (wb_valid[i] && wb_tag[i] == {IdxW'(x), OpW'(o)}) temp_d = wb_res[i];
         end
+      end
+      always_ff @(posedge clk_i) begin
+        temp_q[x][o] <= temp_d;
       end
     end
   end
