@@ -1,6 +1,8 @@
-// The unit's SystemVerilog sources, in the order every tool reads them: the package first, then
-// the modules in name order. Paths are relative to this file. Read by rtl/CMakeLists.txt,
+// The unit's SystemVerilog sources, in the order every tool reads them: the assertion macros
+// first (Verilator finds an `include only on -I paths, so the list gives it), then the package,
+// then the modules in name order. Paths are relative to this file. Read by rtl/CMakeLists.txt,
 // tests/CMakeLists.txt and scripts/ (synthesis, costs, lint); a new module is added here only.
+tess_assert.svh
 tess_pkg.sv
 tess_cpbuf.sv
 tess_cpg.sv

@@ -16,6 +16,9 @@
 // points. One lane takes the corners and the tangents in turn; three lanes one each at a time.
 // Every value is exact until the one rounding the C++ reference (sim/cpg.cpp) applies, so the
 // results are bit-identical to compute_control_points for every CpgLanes and CpgDigitBits.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_cpg #(
   parameter int unsigned CoordIntBits  = tess_pkg::CoordIntBits,
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
@@ -423,15 +426,9 @@ module tess_cpg #(
       end
     end
 
-`ifndef SYNTHESIS
     // The tag pass takes exactly T cycles: the edge pass starts with C - 1 cycles left.
-    always_ff @(posedge clk_i) begin
-      if (rst_ni && compute && tag_pass && phase_d == PNone) begin
-        assert (counter_q == cycles_m1 + CntW'(1))
-          else $error("tess_cpg: tag pass ended with %0d cycles left, not C - 1 = %0d", counter_q - 1, cycles_m1);
-      end
-    end
-`endif
+    `TESS_ASSERT(TagPassLength_A, compute && tag_pass && phase_d == PNone |-> counter_q == cycles_m1 + CntW'(1),
+                 clk_i, !rst_ni)
   end else begin : g_no_tags
     assign tag_pass    = 1'b0;
     assign tag_cycles  = '0;
@@ -645,7 +642,8 @@ module tess_cpg #(
   assign buf_wr_o    = write;
 
 `ifndef SYNTHESIS
-  // The accumulated operand is 3 sum(t) - 2 sum(P) of the six staged tangent points.
+  // The accumulated operand is 3 sum(t) - 2 sum(P) of the six staged tangent points (the sum
+  // only the assertion reads).
   logic [3*X111W-1:0] x111_sum;
   for (genvar c = 0; c < 3; c++) begin : g_x111_sum
     logic signed [SumTW-1:0] sum_t;
@@ -656,18 +654,9 @@ module tess_cpg #(
     assign x111_sum[c*X111W +: X111W] = X111W'(sum_t) * $signed(X111W'(3))
       - ((X111W'($signed(p_q[0][c*W +: W])) + X111W'($signed(p_q[1][c*W +: W])) + X111W'($signed(p_q[2][c*W +: W]))) <<< 1);
   end
-  always_ff @(posedge clk_i) begin
-    if (rst_ni && in_b111) begin
-      assert (x111_q == x111_sum) else $error("tess_cpg: accumulated b111 operand is not 3 sum(t) - 2 sum(P)");
-    end
-  end
-
-  always_ff @(posedge clk_i) begin
-    if (rst_ni) begin
-      assert (mode_i == tess_pkg::ModeQuadratic || mode_i == tess_pkg::ModeReflect || mode_linear)
-        else $error("tess_cpg: mode %0d is not defined", mode_i);
-    end
-  end
 `endif
+  `TESS_ASSERT(X111Sum_A, in_b111 |-> x111_q == x111_sum, clk_i, !rst_ni)
+  `TESS_ASSERT(ModeDefined_A, mode_i == tess_pkg::ModeQuadratic || mode_i == tess_pkg::ModeReflect || mode_linear,
+               clk_i, !rst_ni)
 
 endmodule

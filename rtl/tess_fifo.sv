@@ -2,6 +2,9 @@
 // state only. A push while full is dropped (the unit never does that: the producers check
 // full_o at the start of the cycle, and an assertion guards it), even when the FIFO pops in
 // the same cycle (docs/microarchitecture.md §8, VTX FIFO).
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_fifo #(
   parameter int unsigned Width = 8,
   parameter int unsigned Depth = 2,
@@ -67,12 +70,6 @@ module tess_fifo #(
   assign data_o  = mem_q[rd_ptr_q];
   assign count_o = count_q;
 
-`ifndef SYNTHESIS
-  always_ff @(posedge clk_i) begin
-    if (rst_ni) begin
-      assert (!(push_i && full_o)) else $error("tess_fifo: push into a full FIFO");
-    end
-  end
-`endif
+  `TESS_ASSERT(PushNotFull_A, !(push_i && full_o), clk_i, !rst_ni)
 
 endmodule

@@ -2,6 +2,9 @@
 // circular queue (allocation at the tail, in-order retirement at the head), the in-order
 // priority scheduler that issues the first N ready (age, op) candidates onto N INT blocks,
 // the temporaries, and retirement into the VTX FIFO. The DPG supplies the domain points.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_te #(
   parameter int unsigned CoordWidth = 24,
   parameter int unsigned BaryBits   = tess_pkg::BaryBits,
@@ -398,12 +401,6 @@ module tess_te #(
   assign te_idle_o        = !any_issue && !te_blocked_o && no_point && !upstream_busy_i;
   assign te_pipeline_o    = !head_waiting && !any_issue && !te_blocked_o && !no_point;
 
-`ifndef SYNTHESIS
-  always_ff @(posedge clk_i) begin
-    if (rst_ni) begin
-      assert (!(vtx_push_o && vtx_full_i)) else $error("tess_te: retirement into a full VTX FIFO");
-    end
-  end
-`endif
+  `TESS_ASSERT(RetireNotFull_A, !(vtx_push_o && vtx_full_i), clk_i, !rst_ni)
 
 endmodule

@@ -2,6 +2,9 @@
 // contexts, scheduler, INT blocks) -> VTX FIFO, plus the performance counters.
 // Cycle-by-cycle specification: docs/microarchitecture.md. Every output is a function of
 // registered state only.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_unit #(
   parameter int unsigned CoordIntBits  = tess_pkg::CoordIntBits,
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
@@ -289,28 +292,12 @@ module tess_unit #(
     assign perf_int_busy_o[i*CtrW +: CtrW] = ctr_q[13 + i];
   end
 
-`ifndef SYNTHESIS
-  // Interface rules the unit itself must keep.
-  logic           vtx_stalled_q;
-  logic [VtxW-1:0] vtx_stalled_data_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      vtx_stalled_q <= 1'b0;
-    end else begin
-      vtx_stalled_q      <= vtx_valid_o && !vtx_ready_i;
-      vtx_stalled_data_q <= vtx_head;
-      if (vtx_stalled_q) begin
-        assert (vtx_valid_o) else $error("tess_unit: vtx_valid_o dropped while stalled");
-        assert (vtx_head == vtx_stalled_data_q)
-          else $error("tess_unit: vertex data changed while stalled");
-      end
-      assert (!(cpg_wr && fsu_busy)) else $error("tess_unit: control points written before the FSU's records");
-      if (tri_push && tri_pattern_i == tess_pkg::PatUniform) begin
-        assert (tri_l_i >= LBits'(1) && tri_l_i <= LBits'(tess_pkg::MaxFactor))
-          else $error("tess_unit: tessellation factor %0d outside 1..64", tri_l_i);
-      end
-    end
-  end
-`endif
+  // Interface rules the unit itself must keep: a vertex offered and not taken stays, unchanged;
+  // an accepted uniform patch has L in 1..64; the FSU's records are complete when the CPG writes.
+  `TESS_ASSERT(VtxValidHeld_A, vtx_valid_o && !vtx_ready_i |=> vtx_valid_o, clk_i, !rst_ni)
+  `TESS_ASSERT(VtxDataHeld_A, vtx_valid_o && !vtx_ready_i |=> $stable(vtx_head), clk_i, !rst_ni)
+  `TESS_ASSERT(FactorInRange_A, tri_push && tri_pattern_i == tess_pkg::PatUniform
+                                |-> tri_l_i >= LBits'(1) && tri_l_i <= LBits'(tess_pkg::MaxFactor), clk_i, !rst_ni)
+  `TESS_ASSERT(FsuRecordsReady_A, !(cpg_wr && fsu_busy), clk_i, !rst_ni)
 
 endmodule
