@@ -1,7 +1,8 @@
 // Tessellation engine of rtl/tess_te.sv (docs/microarchitecture.md §8): V vertex contexts in a
 // circular queue, the scheduler that issues the first N ready operations (oldest context first,
 // lowest op first) onto the N INT blocks, the DPG that supplies domain points, and in-order
-// retirement of the head context into the VTX FIFO.
+// retirement of the head context into the VTX FIFO. sim/blocks/te_reference.hpp is the same TE
+// written as the RTL is; tests/sim/te_reference_test.cpp checks the two cycle for cycle.
 #pragma once
 
 #include <array>
@@ -78,6 +79,11 @@ class Te {
   bool left_over() const { return left_over_; }
   // The ops the last schedule() issued, in issue order (decoded on demand: traces and tests).
   const IssuedOp* issued_ops() const;
+  // Registered state, for the cycle-for-cycle check against TeReference (tests): the head's
+  // physical slot and the issued/done bits of the context of age `age` (< contexts_in_use()).
+  int head_slot() const { return head_; }
+  std::uint32_t issued_bits(int age) const { return issued_.lane(age); }
+  std::uint32_t done_bits(int age) const { return done_.lane(age); }
 
   // The class of the cycle whose schedule() issued `issued` ops; head_waiting() as it was before
   // schedule(), the other flags from the registered state (doc §10).
