@@ -18,6 +18,11 @@
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include "app/report_html.hpp"
+#include "model/mesh_io.hpp"
+#include "sim/blocks/counter_registry.hpp"
+#include "sim/config.hpp"
+#include "sim/simulate.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -359,6 +364,28 @@ TEST(ReportCli, CompareLeavesTheTimelineOut) {
                  a.path());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out.find("timeline"), std::string::npos);
+}
+
+// The legend: every class of the counter registry (sim/blocks/counter_registry.hpp) of the TE,
+// CPG and GPE with its colour (the run's own statistics: tests/sim/counter_registry_test.cpp).
+TEST(ReportCli, LegendShowsEveryClassWithItsColour) {
+  Mesh mesh = load_mesh("/usr/share/assimp/models/STL/sphereWithHole.stl");
+  mesh.triangles.resize(6);
+  sim::UnitConfig cfg;
+  cfg.int_blocks = 3;
+  cfg.tess_factor = 5;
+  cfg.validate("test");
+  app::ReportInput in;
+  in.stats_name = "stats.json";
+  const std::string page = app::report_html(sim::stats_json(sim::simulate(mesh, cfg)), in);
+  int legend = 0;
+  for (const sim::CounterRow& c : sim::kCounterRegistry) {
+    if (c.block == sim::CounterBlock::Run || c.block == sim::CounterBlock::Int) continue;
+    EXPECT_NE(page.find(std::string("background:") + c.colour + "\"></span>" + c.key + " "), std::string::npos)
+        << c.name;
+    ++legend;
+  }
+  EXPECT_EQ(legend, 7 + 4 + 4);  // TE, CPG and GPE classes
 }
 
 }  // namespace

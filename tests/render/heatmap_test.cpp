@@ -1,39 +1,20 @@
 // Pictures that measure: text and colour bars (render/annotate.hpp), heat maps of per-vertex
-// values, the choice of the model's best side, and `tessim render --color` end to end.
+// values, the choice of the model's best side. `tessim render --color` end to end:
+// tests/cli/render_cli_test.cpp.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
 #include "render/annotate.hpp"
 #include "render/raster.hpp"
-#include "tests/support/read_image.hpp"
-#include "tests/support/run_tessim.hpp"
-#include "tests/support/temp_dir.hpp"
 
-namespace fs = std::filesystem;
 using namespace tessim::app;
-using tessim::testing::read_back;
-using tessim::testing::ReadBack;
-using tessim::testing::run_tessim;
-using tessim::testing::TempDir;
 
 namespace {
-
-const std::string kWuson = "/usr/share/assimp/models/PLY/Wuson.ply";
-const std::string kCinema4D = "/usr/share/assimp/models/Collada/Cinema4D.dae";
-
-// The "largest value" a heat-map render prints (its colour line), or NaN when missing.
-double largest_value(const tessim::testing::TessimRun& run) {
-  const auto at = run.out.find("largest value ");
-  return at == std::string::npos ? std::nan("") : std::stod(run.out.substr(at + 14));
-}
 
 double luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
@@ -174,92 +155,4 @@ TEST(Raster, BestViewFacesTheDetailedSide) {
   // +X is azimuth 90 (front +Z, towards +X); of the candidates 35 + 45 k, 80 looks at it most.
   EXPECT_EQ(view.azimuth_deg, 80.0);
   EXPECT_EQ(view.elevation_deg, ViewAngles{}.elevation_deg);
-}
-
-TEST(RenderCommand, ErrorHeatMapMeasuresWhatSimErrorsReports) {
-  TempDir dir;
-  const fs::path png = dir.path() / "err.png", stats = dir.path() / "stats.json";
-  const auto render = run_tessim({"render", kWuson, "-L", "3", "--color", "error-position", "--size", "200x150", "-o",
-                                  png.string()},
-                                 dir.path());
-  ASSERT_EQ(render.status, 0) << render.err;
-  const auto sim = run_tessim({"sim", kWuson, "-L", "3", "--errors", "--stats", stats.string()}, dir.path());
-  ASSERT_EQ(sim.status, 0) << sim.err;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
-  const double position_max = j.at("errors").at("position_max").get<double>();
-  const double largest = largest_value(render);
-  ASSERT_FALSE(std::isnan(largest)) << render.out;
-  EXPECT_NEAR(largest, position_max, 1e-5 * position_max) << render.out;
-  EXPECT_GT(largest, 0.0);
-
-  const ReadBack image = read_back(png);
-  ASSERT_EQ(image.width, 200);
-  EXPECT_GT(image.height, 150 + 40);  // caption above, colour bar below
-  // The normal heat map: angles in radians, far below a degree with 20 fraction bits.
-  const auto normal = run_tessim({"render", kWuson, "-L", "3", "--color", "error-normal", "--size", "120x90", "-o",
-                                  (dir.path() / "n.png").string()},
-                                 dir.path());
-  ASSERT_EQ(normal.status, 0) << normal.err;
-  const double angle = largest_value(normal);
-  EXPECT_GT(angle, 0.0);
-  EXPECT_LT(angle, 0.0175);
-}
-
-TEST(RenderCommand, ColourScaleCanBeFixedAndClips) {
-  TempDir dir;
-  const auto r = run_tessim({"render", kWuson, "-L", "2", "--color", "pn-vs-flat", "--color-max", "1e-4", "--size",
-                             "120x90", "-o", (dir.path() / "c.png").string()},
-                            dir.path());
-  ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("0 .. 0.0001 "), std::string::npos) << r.out;
-  const double largest = largest_value(r);
-  EXPECT_GT(largest, 1e-4);  // PN bulges far more than 1e-4 of the diagonal somewhere
-}
-
-TEST(RenderCommand, TaggedMeshPanelsAndTheirDifference) {
-  TempDir dir;
-  const fs::path st = dir.path() / "c4d.ply";
-  ASSERT_EQ(run_tessim({"stpn-import", kCinema4D, "-o", st.string()}, dir.path()).status, 0);
-  const auto three = run_tessim({"render", st.string(), "-L", "4", "--compare", "flat,pn", "--size", "100x80",
-                                 "--no-caption", "-o", (dir.path() / "three.png").string()},
-                                dir.path());
-  ASSERT_EQ(three.status, 0) << three.err;
-  EXPECT_NE(three.out.find("STPN triangles"), std::string::npos) << three.out;
-  EXPECT_NE(three.out.find("left: flat input | PN (tags ignored)"), std::string::npos) << three.out;
-  const ReadBack image = read_back(dir.path() / "three.png");
-  EXPECT_EQ(image.width, 3 * 100 + 2 * kSeparatorWidth);
-  EXPECT_EQ(image.height, 80);
-
-  const auto diff = run_tessim({"render", st.string(), "-L", "4", "--color", "stpn-vs-pn", "--size", "100x80", "-o",
-                                (dir.path() / "diff.png").string()},
-                               dir.path());
-  ASSERT_EQ(diff.status, 0) << diff.err;
-  // The cube's creases move the surface by a few percent of the diagonal; the sphere not at all.
-  const double largest = largest_value(diff);
-  EXPECT_GT(largest, 0.01);
-  EXPECT_LT(largest, 0.2);
-}
-
-TEST(RenderCommand, ColourOptionsRejectWhatCannotBeMeasured) {
-  TempDir dir;
-  const std::string out = (dir.path() / "x.png").string();
-  const std::vector<std::vector<std::string>> bad = {
-      {"render", kWuson, "--color", "rainbow", "-o", out},
-      {"render", kWuson, "--color", "pn-vs-flat", "--color-max", "-1", "-o", out},
-      {"render", kWuson, "--color", "error-position", "--partitioning", "fractional_odd", "-o", out},
-      {"render", kWuson, "--color", "error-normal", "--normals", "derivative", "-o", out},
-      {"render", kWuson, "--color", "stpn-vs-pn", "-o", out},
-      {"render", kWuson, "--compare", "pn", "-o", out},
-      {"render", kWuson, "--compare", "flat,flat", "-o", out},
-      {"render", kWuson, "--config", (dir.path() / "missing.json").string(), "-o", out},
-      {"render", kWuson, "--color", "error-position", "--config", (dir.path() / "missing.json").string(), "-o", out},
-  };
-  for (const auto& args : bad) {
-    const auto r = run_tessim(args, dir.path());
-    std::string line;
-    for (const auto& a : args) line += a + " ";
-    EXPECT_EQ(r.status, 2) << line << r.err;
-    EXPECT_NE(r.err.find("tessim: error:"), std::string::npos) << line << r.err;
-    EXPECT_FALSE(fs::exists(out)) << line;
-  }
 }

@@ -1,5 +1,5 @@
 // The software rasterizer behind `tessim render`: coverage, depth, lighting, wireframe, image
-// files, and the render subcommand end to end.
+// files. The render subcommand end to end: tests/cli/render_cli_test.cpp.
 #include <unistd.h>
 
 #include <algorithm>
@@ -400,86 +400,4 @@ TEST(Raster, PngAndExrReadBackAtTheirResolution) {
   auto entries = dir.entries();
   std::sort(entries.begin(), entries.end());
   EXPECT_EQ(entries, (std::vector<fs::path>{"OUT.EXR", "out.png"}));  // no temporaries left
-}
-
-// ---- tessim render, end to end ------------------------------------------------------------
-
-namespace {
-
-void write_obj(const RenderMesh& mesh, const fs::path& path) {
-  std::ofstream out(path);
-  for (const glm::dvec3& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-  for (const glm::dvec3& n : mesh.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
-  for (const glm::uvec3& t : mesh.triangles)
-    out << "f " << t.x + 1 << "//" << t.x + 1 << ' ' << t.y + 1 << "//" << t.y + 1 << ' ' << t.z + 1 << "//"
-        << t.z + 1 << '\n';
-}
-
-int run_tessim(const std::string& arguments, const fs::path& log) {
-  const std::string command = std::string(TESSIM_BINARY) + " " + arguments + " >" + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-
-}  // namespace
-
-TEST(RenderCommand, RejectsBadArgumentsBeforeWritingAnything) {
-  TempDir dir;
-  const fs::path mesh = dir.path() / "ball.obj";
-  write_obj(icosphere(1), mesh);
-  const fs::path log = fs::temp_directory_path() / ("tessim_render_log_" + std::to_string(::getpid()));
-  const std::string out = (dir.path() / "out.png").string();
-  const std::string base = "render " + mesh.string() + " ";
-  for (const std::string& bad :
-       {base + "--size 0x10 -o " + out, base + "--size 10 -o " + out, base + "--size 9000x10 -o " + out,
-        base + "-L 0 -o " + out, base + "-L 65 -o " + out, base + "--normals cubic -o " + out,
-        base + "--compare smooth -o " + out, base + "--elevation 100 -o " + out, base + "--up x -o " + out,
-        base + "-o " + (dir.path() / "out.bmp").string(), base + "-o " + (dir.path() / "no" / "out.png").string(),
-        "render " + (dir.path() / "missing.obj").string() + " -o " + out}) {
-    EXPECT_EQ(run_tessim(bad, log), 2) << bad;
-    std::ifstream text(log);
-    const std::string message((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
-    EXPECT_NE(message.find("tessim: error:"), std::string::npos) << bad << "\n" << message;
-    EXPECT_EQ(dir.entries(), std::vector<fs::path>{"ball.obj"}) << bad;
-  }
-  fs::remove(log);
-}
-
-TEST(RenderCommand, CompareWritesFlatAndPnPanels) {
-  TempDir dir;
-  const fs::path mesh = dir.path() / "ball.obj";
-  write_obj(icosphere(1), mesh);
-  const fs::path log = dir.path() / "log.txt";
-  const fs::path png = dir.path() / "cmp.png";
-  ASSERT_EQ(run_tessim("render " + mesh.string() + " -L 3 --compare flat --wireframe --size 96x64 --no-caption -o " +
-                           png.string(),
-                       log),
-            0);
-  const ReadBack both = read_back(png);
-  ASSERT_EQ(both.width, 2 * 96 + kSeparatorWidth);
-  ASSERT_EQ(both.height, 64);
-  // Same camera: the same silhouette (to within the PN bulge) in both panels, but different
-  // shading inside it (facets on the left, smooth on the right).
-  std::size_t left_covered = 0, right_covered = 0, differing = 0;
-  const float background = both.rgb[0];  // the top left corner is empty
-  for (int y = 0; y < 64; ++y)
-    for (int x = 0; x < 96; ++x) {
-      const float* l = &both.rgb[(static_cast<std::size_t>(y) * both.width + x) * 3];
-      const float* r = &both.rgb[(static_cast<std::size_t>(y) * both.width + x + 96 + kSeparatorWidth) * 3];
-      left_covered += std::abs(l[0] - background) > 0.02f;
-      right_covered += std::abs(r[0] - background) > 0.02f;
-      differing += std::abs(l[0] - r[0]) > 0.02f;
-    }
-  EXPECT_GT(left_covered, 96u * 64u / 4);
-  EXPECT_NEAR(double(right_covered), double(left_covered), 0.15 * left_covered);
-  EXPECT_GT(differing, left_covered / 4);
-
-  const fs::path exr = dir.path() / "single.exr";
-  ASSERT_EQ(run_tessim("render " + mesh.string() + " --normals derivative --size 50x40 --no-caption -o " + exr.string(),
-                       log),
-            0);
-  const ReadBack single = read_back(exr);
-  EXPECT_EQ(single.width, 50);
-  EXPECT_EQ(single.height, 40);
 }

@@ -1,5 +1,6 @@
 // The description of the unit's parameters (sim/params.hpp) and everything driven by it:
-// JSON round trip, ranges, command-line flags and aliases, `tessim schema`, the README table.
+// JSON round trip, ranges, the schema, the README table. The command-line flags and aliases and
+// the `tessim schema` binary: tests/cli/config_cli_test.cpp.
 #include <gtest/gtest.h>
 
 #include <iterator>
@@ -14,56 +15,26 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "model/error.hpp"
-#include "app/config_flags.hpp"
+#include "model/mesh_io.hpp"
 #include "sim/config.hpp"
 #include "sim/cpg.hpp"
 #include "sim/error_bound.hpp"
 #include "sim/int_ops.hpp"
 #include "sim/params.hpp"
-#include "tests/support/run_tessim.hpp"
-#include "tests/support/temp_dir.hpp"
+#include "sim/simulate.hpp"
+#include "tests/support/param_values.hpp"
 
 namespace tessim::sim {
 namespace {
 
 using nlohmann::json;
-using tessim::testing::TempDir;
-
-// A valid value of `p` other than its default.
-json other_value(const ParamSpec& p) {
-  const json d = p.get(UnitConfig{});
-  switch (p.type) {
-    case ParamType::Int: return d.get<long long>() == static_cast<long long>(p.max) ? json(static_cast<long long>(p.min))
-                                                                                   : json(static_cast<long long>(p.max));
-    case ParamType::Double: return d.get<double>() == p.max ? p.min : p.max;
-    case ParamType::UInt64: return std::numeric_limits<std::uint64_t>::max();
-    case ParamType::Enum:
-      for (const char* c : p.choices) {
-        UnitConfig cfg;
-        p.set(cfg, std::string(c));
-        if (c != d.get<std::string>() && hardware_supports(cfg.normals)) return c;
-      }
-  }
-  return nullptr;
-}
+using tessim::testing::other_value;
+using tessim::testing::with_context;
 
 // The InputError of applying and validating `j`, or "" when it is accepted.
-// The other parameters a value needs to be valid: cpg_digit_bits may not exceed the coordinate
-// width, so its upper bound (32) is tried with W = 32.
-json context_for(const ParamSpec& p) {
-  if (std::string_view(p.key) == "cpg_digit_bits") return {{"coord_int_bits", 6}, {"coord_frac_bits", 25}};
-  return json::object();
-}
-
-json with_context(const ParamSpec& p, json j) {
-  j.update(context_for(p));
-  return j;
-}
-
 std::string error_of(const json& j) {
   UnitConfig cfg;
   try {
@@ -153,111 +124,7 @@ TEST(Params, RangeBoundsAcceptedAndValuesOutsideRejectedNamingTheKey) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Command-line flags: registered from the table.
-
-UnitConfig parse(std::vector<std::string> args) {
-  CLI::App app;
-  app::ConfigFlags flags(app);
-  std::reverse(args.begin(), args.end());  // CLI11 takes a reversed vector
-  app.parse(args);
-  return flags.config();
-}
-
-TEST(ParamsCli, CanonicalFlagsAndAliasesGiveTheSameConfig) {
-  const UnitConfig canonical = parse({"--tess-factor", "8", "--int-blocks", "3", "--te-contexts", "6",
-                                      "--gpe-stall-prob", "0.25", "--cpg-mapping", "gpe", "--normals", "reflect"});
-  const UnitConfig aliases = parse({"-L", "8", "--int", "3", "--contexts", "6", "--stall", "0.25", "--cpg", "gpe",
-                                    "--normals", "reflect"});
-  EXPECT_EQ(canonical, aliases);
-  EXPECT_EQ(canonical.tess_factor, 8);
-  EXPECT_EQ(canonical.int_blocks, 3);
-  EXPECT_EQ(canonical.te_contexts, 6);
-  EXPECT_EQ(canonical.gpe_stall_prob, 0.25);
-  EXPECT_EQ(canonical.cpg_mapping, CpgMapping::Gpe);
-  EXPECT_EQ(canonical.normals, NormalMode::Reflect);
-  EXPECT_EQ(parse({}), UnitConfig{});
-}
-
-TEST(ParamsCli, EveryParameterHasAFlag) {
-  for (const ParamSpec& p : unit_params()) {
-    SCOPED_TRACE(p.key);
-    const json v = other_value(p);
-    const std::string text = v.is_string() ? v.get<std::string>() : v.dump();
-    UnitConfig expected;
-    apply_json(expected, with_context(p, json{{p.key, v}}), "test");
-    std::vector<std::string> context;
-    const json needs = context_for(p);
-    for (const auto& [key, value] : needs.items()) {
-      context.push_back(find_param(key)->flag);
-      context.push_back(value.dump());
-    }
-    auto args = [&](const std::string& flag) {
-      std::vector<std::string> a{flag, text};
-      a.insert(a.end(), context.begin(), context.end());
-      return a;
-    };
-    EXPECT_EQ(parse(args(p.flag)), expected);
-    for (const std::string& alias : alias_list(p)) EXPECT_EQ(parse(args(alias)), expected);
-  }
-}
-
-TEST(ParamsCli, FlagsOverrideTheFileOnlyWhenGiven) {
-  TempDir dir;
-  const auto file = dir.write("cfg.json", R"({"int_blocks": 1, "tess_factor": 3, "seed": 9})");
-  const UnitConfig from_file = parse({"--config", file.string()});
-  EXPECT_EQ(from_file.int_blocks, 1);
-  EXPECT_EQ(from_file.tess_factor, 3);
-  EXPECT_EQ(from_file.seed, 9u);
-  const UnitConfig overridden = parse({"--config", file.string(), "--int", "4"});
-  EXPECT_EQ(overridden.int_blocks, 4);
-  EXPECT_EQ(overridden.tess_factor, 3);
-}
-
-TEST(ParamsCli, BadFlagValuesNameTheKey) {
-  try {
-    parse({"--int", "0"});
-    FAIL() << "accepted --int 0";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "command line: int_blocks: value 0 out of range [1, 32]");
-  }
-  TempDir dir;
-  const auto file = dir.write("cfg.json", R"({"int_blocks": 1})");
-  try {
-    parse({"--config", file.string(), "-L", "65"});
-    FAIL() << "accepted -L 65";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              file.string() + " with command-line overrides: tess_factor: value 65 out of range [1, 64]");
-  }
-}
-
-// ---------------------------------------------------------------------------------------------
 // tessim schema
-
-TEST(Schema, BinaryPrintsValidJsonListingEveryParameter) {
-  TempDir scratch;
-  const auto r = tessim::testing::run_tessim({"schema"}, scratch.path());
-  ASSERT_EQ(r.status, 0) << r.err;
-  const json s = json::parse(r.out);
-  EXPECT_EQ(s, schema_json());
-  std::set<std::string> listed;
-  for (const json& p : s["parameters"]) {
-    listed.insert(p["key"].get<std::string>());
-    for (const char* field : {"flag", "aliases", "rtl", "kind", "type", "default", "unit", "description"})
-      EXPECT_TRUE(p.contains(field)) << p["key"] << " lacks " << field;
-    EXPECT_TRUE(p.contains("choices") || (p.contains("minimum") && p.contains("maximum"))) << p["key"];
-    EXPECT_EQ(p["default"], to_json(UnitConfig{})[p["key"].get<std::string>()]);
-  }
-  std::set<std::string> keys;
-  const json config = to_json(UnitConfig{});
-  for (const auto& [k, v] : config.items()) keys.insert(k);
-  EXPECT_EQ(listed, keys);
-  EXPECT_EQ(s["rtl_parameters"]["IntBlocks"], "int_blocks");
-  EXPECT_EQ(s["rtl_parameters"]["Contexts"], "te_contexts");
-  EXPECT_EQ(s["rtl_parameters"]["CpgDigitBits"], "cpg_digit_bits");
-  EXPECT_EQ(s["rtl_parameters"]["CpgTags"], "cpg_tags");
-  EXPECT_EQ(s["rtl_parameters"].size(), 11u);
-}
 
 // A Verilated variant gives only the parameters that differ from tess_pkg's defaults
 // (rtl/CMakeLists.txt), so those defaults must be UnitConfig's.
@@ -303,22 +170,30 @@ TEST(Schema, IntOpsAndStatistics) {
   EXPECT_EQ(s["statistics"]["classes"]["gpe"], json({"busy", "stalled", "cpg", "starved"}));
 }
 
-// The cycle model issues as many INT ops per vertex as the table says (unit.cpp keeps its own
-// copy of the operands until it switches to sim/int_ops.hpp).
+// The cycle model issues exactly the ops of the table (sim/int_ops.hpp) for every normal mode:
+// over a whole run, the INT blocks' busy cycles add up to vertices x ops per vertex (1710
+// vertices of sphereWithHole at L = 2: 23940 ops quadratic and reflect, 18810 linear), and the
+// statistics report that ratio and the CPG's cycles per triangle.
 TEST(Schema, CycleModelIssuesTheOpsOfTheTable) {
-  const std::filesystem::path mesh = "/usr/share/assimp/models/STL/sphereWithHole.stl";
-  if (!std::filesystem::exists(mesh)) FAIL() << mesh << " is missing: scripts/setup.sh installs assimp-testmodels";
-  TempDir dir;
+  const std::filesystem::path path = "/usr/share/assimp/models/STL/sphereWithHole.stl";
+  if (!std::filesystem::exists(path)) FAIL() << path << " is missing: scripts/setup.sh installs assimp-testmodels";
+  const Mesh mesh = load_mesh(path.string());
   for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
-    const auto stats = dir.path() / "stats.json";
-    const auto r = tessim::testing::run_tessim(
-        {"sim", mesh.string(), "-L", "2", "--normals", std::string(to_string(m)), "--stats", stats.string()},
-        dir.path());
-    ASSERT_EQ(r.status, 0) << r.err;
-    std::ifstream in(stats);
-    const json j = json::parse(in);
-    EXPECT_EQ(j["int"]["ops_per_vertex"].get<double>(), int_ops::ops_per_vertex(m)) << to_string(m);
-    EXPECT_EQ(j["cpg_cycles_per_triangle"].get<int>(), cpg_cycles(m, NumberFormat{})) << to_string(m);
+    SCOPED_TRACE(to_string(m));
+    UnitConfig cfg;
+    cfg.normals = m;
+    cfg.tess_factor = 2;
+    cfg.int_blocks = 3;
+    cfg.validate("test");
+    const SimResult r = simulate(mesh, cfg);
+    EXPECT_EQ(r.unit.vertices_out, 1710u);
+    std::uint64_t busy = 0;
+    for (std::uint64_t b : r.unit.int_busy_used()) busy += b;
+    EXPECT_EQ(busy, r.unit.vertices_out * static_cast<std::uint64_t>(int_ops::ops_per_vertex(m)));
+    EXPECT_EQ(busy, m == NormalMode::Linear ? 18810u : 23940u);
+    const json j = stats_json(r);
+    EXPECT_EQ(j["int"]["ops_per_vertex"].get<double>(), int_ops::ops_per_vertex(m));
+    EXPECT_EQ(j["cpg_cycles_per_triangle"].get<int>(), cpg_cycles(m, NumberFormat{}));
   }
 }
 

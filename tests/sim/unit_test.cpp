@@ -1,8 +1,8 @@
 // Cycle-level model of the unit (sim/unit.hpp), its geometry engine (sim/gpe.hpp) and
 // whole-mesh runs (sim/simulate.hpp): docs/microarchitecture.md cycle for cycle, statistics,
-// throughput bounds, backpressure, reset, configuration errors, the CLI.
+// throughput bounds, backpressure, reset, configuration errors. `tessim sim`:
+// tests/cli/sim_cli_test.cpp.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -733,111 +733,6 @@ TEST(Trace, WindowInTheMiddleCompressedWithIdsAndFlows) {
     EXPECT_EQ(sf.first, write_at.at(flow_patch.at(v))) << "flow of vertex " << v << " starts at its patch's write";
     EXPECT_EQ(sf.second, vertex_start.at(v)) << "and ends where the vertex enters its context";
   }
-}
-
-// ---------------------------------------------------------------------------------------------
-// CLI
-
-struct CommandResult {
-  int status;
-  std::string output;
-};
-
-CommandResult run_tessim(const std::string& args) {
-  const std::string cmd = std::string(TESSIM_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-std::filesystem::path temp_file(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("tessim_" + std::to_string(::getpid()) + "_" + name);
-}
-
-TEST(SimCli, RejectsBadConfigurationsNamingTheKey) {
-  const auto cfg = temp_file("bad.json");
-  const auto stats = temp_file("stats.json");
-  struct Case {
-    std::string json, flags, key;
-  };
-  for (const Case& c : {Case{R"({"te_contextz": 4})", "", "te_contextz"},
-                        Case{R"({"int_blocks": 40})", "", "int_blocks"},
-                        Case{R"({"gpe_cycles": "slow"})", "", "gpe_cycles"},
-                        Case{R"({"normals": "derivative"})", "", "normals"},
-                        Case{"{}", "--int 0", "int_blocks"},
-                        Case{"{}", "--normals derivative", "normals"},
-                        Case{"{}", "--cpg magic", "cpg_mapping"},
-                        Case{"{}", "--stall 2", "gpe_stall_prob"}}) {
-    std::ofstream(cfg) << c.json;
-    const CommandResult r =
-        run_tessim("sim --config " + cfg.string() + " " + c.flags + " --stats " + stats.string());
-    EXPECT_EQ(r.status, 2) << r.output;
-    EXPECT_NE(r.output.find("tessim: error:"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find(c.key), std::string::npos) << r.output;
-    EXPECT_FALSE(std::filesystem::exists(stats)) << "nothing written on error";
-  }
-  std::filesystem::remove(cfg);
-}
-
-TEST(SimCli, FlagsOverrideConfigAndStatsFileHasEverything) {
-  const auto cfg = temp_file("cfg.json");
-  const auto stats = temp_file("stats2.json");
-  std::ofstream(cfg) << R"({"int_blocks": 1, "tess_factor": 2, "gpe_cycles": 3})";
-  const CommandResult r = run_tessim(std::string("sim ") + kWuson + " --config " + cfg.string() +
-                                     " --int 3 --contexts 2 --stats " + stats.string());
-  ASSERT_EQ(r.status, 0) << r.output;
-  std::ifstream in(stats);
-  const nlohmann::json j = nlohmann::json::parse(in);
-  EXPECT_EQ(j["config"]["int_blocks"], 3);    // flag wins
-  EXPECT_EQ(j["config"]["te_contexts"], 2);   // flag
-  EXPECT_EQ(j["config"]["tess_factor"], 2);   // file
-  EXPECT_EQ(j["config"]["gpe_cycles"], 3);    // file
-  EXPECT_EQ(j["config"]["int_latency"], 1);   // default
-  for (const char* key : {"cycles", "triangles_in", "vertices_out", "throughput", "cycles_per_vertex", "int",
-                          "te", "cpg", "gpe", "stalls", "bottleneck"})
-    EXPECT_TRUE(j.contains(key)) << key;
-  EXPECT_EQ(j["int"]["blocks"].size(), 3u);
-  EXPECT_NE(r.output.find("cycles/vertex"), std::string::npos);
-  std::filesystem::remove(cfg);
-  std::filesystem::remove(stats);
-}
-
-TEST(SimCli, WritesTheTessellatedMeshAndNothingOnError) {
-  const auto out = temp_file("out.ply");
-  const CommandResult r = run_tessim(std::string("sim ") + kWuson + " -L 3 --gpe-cycles 1 -o " + out.string());
-  ASSERT_EQ(r.status, 0) << r.output;
-  const Mesh in = load_mesh(kWuson);
-  const Mesh result = load_mesh(out);
-  EXPECT_EQ(result.triangle_count(), in.triangle_count() * 9);
-  // In the mesh's own coordinates: the same bounding box up to the PN bulge and the rounding.
-  const BoundingBox a = bounding_box(in), b = bounding_box(result);
-  EXPECT_LT(glm::length(a.lo - b.lo) + glm::length(a.hi - b.hi), 0.05 * a.diagonal());
-  std::filesystem::remove(out);
-
-  // Widths that cannot hold the mesh: an error naming the mesh, and no file.
-  const auto cfg = temp_file("narrow.json");
-  std::ofstream(cfg) << R"({"coord_int_bits": 1})";
-  const CommandResult bad = run_tessim(std::string("sim ") + kWuson + " --config " + cfg.string() + " -o " + out.string());
-  EXPECT_EQ(bad.status, 2) << bad.output;
-  EXPECT_NE(bad.output.find("Wuson.ply"), std::string::npos) << bad.output;
-  EXPECT_NE(bad.output.find("cannot hold"), std::string::npos) << bad.output;
-  EXPECT_FALSE(std::filesystem::exists(out));
-  std::filesystem::remove(cfg);
-}
-
-TEST(SimCli, ScheduleAndTrace) {
-  const auto trace = temp_file("trace.json");
-  const CommandResult r = run_tessim(std::string("sim ") + kWuson + " -L 2 --gpe-cycles 1 --int 3 --schedule --trace " +
-                                     trace.string() + " --trace-cycles 500");
-  ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("INT2"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("v0.0"), std::string::npos) << r.output;
-  std::ifstream in(trace);
-  EXPECT_NO_THROW(nlohmann::json::parse(in));
-  std::filesystem::remove(trace);
 }
 
 }  // namespace

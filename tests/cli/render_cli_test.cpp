@@ -1,0 +1,240 @@
+// `tessim render` end to end: arguments refused before anything is written, the flat/PN
+// comparison's panels, image formats, the heat maps of --color against what `tessim sim
+// --errors` reports, the tagged mesh's panels and difference, colour options that cannot be
+// measured.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "render/raster.hpp"
+#include "tests/support/read_image.hpp"
+#include "tests/support/run_tessim.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using namespace tessim::app;
+using tessim::testing::read_back;
+using tessim::testing::ReadBack;
+using tessim::testing::run_tessim;
+using tessim::testing::TempDir;
+using tessim::testing::TessimRun;
+
+namespace {
+
+const std::string kWuson = "/usr/share/assimp/models/PLY/Wuson.ply";
+const std::string kCinema4D = "/usr/share/assimp/models/Collada/Cinema4D.dae";
+
+// Unit icosphere: the icosahedron with every triangle split in four `levels` times, vertices
+// pushed onto the sphere; normals equal positions. Consistent outward (counter-clockwise) winding.
+RenderMesh icosphere(int levels) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  RenderMesh m;
+  for (const glm::dvec3& p : {glm::dvec3(-1, t, 0), glm::dvec3(1, t, 0), glm::dvec3(-1, -t, 0), glm::dvec3(1, -t, 0),
+                              glm::dvec3(0, -1, t), glm::dvec3(0, 1, t), glm::dvec3(0, -1, -t), glm::dvec3(0, 1, -t),
+                              glm::dvec3(t, 0, -1), glm::dvec3(t, 0, 1), glm::dvec3(-t, 0, -1), glm::dvec3(-t, 0, 1)})
+    m.positions.push_back(glm::normalize(p));
+  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
+    auto midpoint = [&](unsigned a, unsigned b) {
+      const auto key = std::minmax(a, b);
+      auto it = midpoints.find(key);
+      if (it != midpoints.end()) return it->second;
+      m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
+      const auto index = static_cast<unsigned>(m.positions.size() - 1);
+      midpoints.emplace(key, index);
+      return index;
+    };
+    std::vector<glm::uvec3> finer;
+    for (const glm::uvec3& tri : m.triangles) {
+      const unsigned ab = midpoint(tri.x, tri.y), bc = midpoint(tri.y, tri.z), ca = midpoint(tri.z, tri.x);
+      finer.insert(finer.end(), {{tri.x, ab, ca}, {tri.y, bc, ab}, {tri.z, ca, bc}, {ab, bc, ca}});
+    }
+    m.triangles = std::move(finer);
+  }
+  m.normals = m.positions;
+  return m;
+}
+
+void write_obj(const RenderMesh& mesh, const fs::path& path) {
+  std::ofstream out(path);
+  for (const glm::dvec3& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (const glm::dvec3& n : mesh.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+  for (const glm::uvec3& t : mesh.triangles)
+    out << "f " << t.x + 1 << "//" << t.x + 1 << ' ' << t.y + 1 << "//" << t.y + 1 << ' ' << t.z + 1 << "//"
+        << t.z + 1 << '\n';
+}
+
+// The "largest value" a heat-map render prints (its colour line), or NaN when missing.
+double largest_value(const tessim::testing::TessimRun& run) {
+  const auto at = run.out.find("largest value ");
+  return at == std::string::npos ? std::nan("") : std::stod(run.out.substr(at + 14));
+}
+
+}  // namespace
+
+TEST(RenderCommand, RejectsBadArgumentsBeforeWritingAnything) {
+  TempDir dir;
+  const fs::path mesh = dir.path() / "ball.obj";
+  write_obj(icosphere(1), mesh);
+  TempDir scratch;  // the captured streams
+  const std::string out = (dir.path() / "out.png").string();
+  const std::string ball = mesh.string();
+  for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
+           {"render", ball, "--size", "0x10", "-o", out},
+           {"render", ball, "--size", "10", "-o", out},
+           {"render", ball, "--size", "9000x10", "-o", out},
+           {"render", ball, "-L", "0", "-o", out},
+           {"render", ball, "-L", "65", "-o", out},
+           {"render", ball, "--normals", "cubic", "-o", out},
+           {"render", ball, "--compare", "smooth", "-o", out},
+           {"render", ball, "--elevation", "100", "-o", out},
+           {"render", ball, "--up", "x", "-o", out},
+           {"render", ball, "-o", (dir.path() / "out.bmp").string()},
+           {"render", ball, "-o", (dir.path() / "no" / "out.png").string()},
+           {"render", (dir.path() / "missing.obj").string(), "-o", out}}) {
+    const TessimRun r = run_tessim(bad, scratch.path());
+    const std::string line = bad[2] + " " + bad[3];
+    EXPECT_EQ(r.status, 2) << line;
+    EXPECT_NE(r.err.find("tessim: error:"), std::string::npos) << line << "\n" << r.err;
+    EXPECT_EQ(dir.entries(), std::vector<std::string>{"ball.obj"}) << line;
+  }
+}
+
+TEST(RenderCommand, CompareWritesFlatAndPnPanels) {
+  TempDir dir;
+  const fs::path mesh = dir.path() / "ball.obj";
+  write_obj(icosphere(1), mesh);
+  const fs::path png = dir.path() / "cmp.png";
+  ASSERT_EQ(run_tessim({"render", mesh.string(), "-L", "3", "--compare", "flat", "--wireframe", "--size", "96x64",
+                        "--no-caption", "-o", png.string()},
+                       dir.path())
+                .status,
+            0);
+  const ReadBack both = read_back(png);
+  ASSERT_EQ(both.width, 2 * 96 + kSeparatorWidth);
+  ASSERT_EQ(both.height, 64);
+  // Same camera: the same silhouette (to within the PN bulge) in both panels, but different
+  // shading inside it (facets on the left, smooth on the right).
+  std::size_t left_covered = 0, right_covered = 0, differing = 0;
+  const float background = both.rgb[0];  // the top left corner is empty
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const float* l = &both.rgb[(static_cast<std::size_t>(y) * both.width + x) * 3];
+      const float* r = &both.rgb[(static_cast<std::size_t>(y) * both.width + x + 96 + kSeparatorWidth) * 3];
+      left_covered += std::abs(l[0] - background) > 0.02f;
+      right_covered += std::abs(r[0] - background) > 0.02f;
+      differing += std::abs(l[0] - r[0]) > 0.02f;
+    }
+  EXPECT_GT(left_covered, 96u * 64u / 4);
+  EXPECT_NEAR(double(right_covered), double(left_covered), 0.15 * left_covered);
+  EXPECT_GT(differing, left_covered / 4);
+
+  const fs::path exr = dir.path() / "single.exr";
+  ASSERT_EQ(run_tessim({"render", mesh.string(), "--normals", "derivative", "--size", "50x40", "--no-caption", "-o",
+                        exr.string()},
+                       dir.path())
+                .status,
+            0);
+  const ReadBack single = read_back(exr);
+  EXPECT_EQ(single.width, 50);
+  EXPECT_EQ(single.height, 40);
+}
+
+TEST(RenderCommand, ErrorHeatMapMeasuresWhatSimErrorsReports) {
+  TempDir dir;
+  const fs::path png = dir.path() / "err.png", stats = dir.path() / "stats.json";
+  const auto render = run_tessim({"render", kWuson, "-L", "3", "--color", "error-position", "--size", "200x150", "-o",
+                                  png.string()},
+                                 dir.path());
+  ASSERT_EQ(render.status, 0) << render.err;
+  const auto sim = run_tessim({"sim", kWuson, "-L", "3", "--errors", "--stats", stats.string()}, dir.path());
+  ASSERT_EQ(sim.status, 0) << sim.err;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
+  const double position_max = j.at("errors").at("position_max").get<double>();
+  const double largest = largest_value(render);
+  ASSERT_FALSE(std::isnan(largest)) << render.out;
+  EXPECT_NEAR(largest, position_max, 1e-5 * position_max) << render.out;
+  EXPECT_GT(largest, 0.0);
+
+  const ReadBack image = read_back(png);
+  ASSERT_EQ(image.width, 200);
+  EXPECT_GT(image.height, 150 + 40);  // caption above, colour bar below
+  // The normal heat map: angles in radians, far below a degree with 20 fraction bits.
+  const auto normal = run_tessim({"render", kWuson, "-L", "3", "--color", "error-normal", "--size", "120x90", "-o",
+                                  (dir.path() / "n.png").string()},
+                                 dir.path());
+  ASSERT_EQ(normal.status, 0) << normal.err;
+  const double angle = largest_value(normal);
+  EXPECT_GT(angle, 0.0);
+  EXPECT_LT(angle, 0.0175);
+}
+
+TEST(RenderCommand, ColourScaleCanBeFixedAndClips) {
+  TempDir dir;
+  const auto r = run_tessim({"render", kWuson, "-L", "2", "--color", "pn-vs-flat", "--color-max", "1e-4", "--size",
+                             "120x90", "-o", (dir.path() / "c.png").string()},
+                            dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("0 .. 0.0001 "), std::string::npos) << r.out;
+  const double largest = largest_value(r);
+  EXPECT_GT(largest, 1e-4);  // PN bulges far more than 1e-4 of the diagonal somewhere
+}
+
+TEST(RenderCommand, TaggedMeshPanelsAndTheirDifference) {
+  TempDir dir;
+  const fs::path st = dir.path() / "c4d.ply";
+  ASSERT_EQ(run_tessim({"stpn-import", kCinema4D, "-o", st.string()}, dir.path()).status, 0);
+  const auto three = run_tessim({"render", st.string(), "-L", "4", "--compare", "flat,pn", "--size", "100x80",
+                                 "--no-caption", "-o", (dir.path() / "three.png").string()},
+                                dir.path());
+  ASSERT_EQ(three.status, 0) << three.err;
+  EXPECT_NE(three.out.find("STPN triangles"), std::string::npos) << three.out;
+  EXPECT_NE(three.out.find("left: flat input | PN (tags ignored)"), std::string::npos) << three.out;
+  const ReadBack image = read_back(dir.path() / "three.png");
+  EXPECT_EQ(image.width, 3 * 100 + 2 * kSeparatorWidth);
+  EXPECT_EQ(image.height, 80);
+
+  const auto diff = run_tessim({"render", st.string(), "-L", "4", "--color", "stpn-vs-pn", "--size", "100x80", "-o",
+                                (dir.path() / "diff.png").string()},
+                               dir.path());
+  ASSERT_EQ(diff.status, 0) << diff.err;
+  // The cube's creases move the surface by a few percent of the diagonal; the sphere not at all.
+  const double largest = largest_value(diff);
+  EXPECT_GT(largest, 0.01);
+  EXPECT_LT(largest, 0.2);
+}
+
+TEST(RenderCommand, ColourOptionsRejectWhatCannotBeMeasured) {
+  TempDir dir;
+  const std::string out = (dir.path() / "x.png").string();
+  const std::vector<std::vector<std::string>> bad = {
+      {"render", kWuson, "--color", "rainbow", "-o", out},
+      {"render", kWuson, "--color", "pn-vs-flat", "--color-max", "-1", "-o", out},
+      {"render", kWuson, "--color", "error-position", "--partitioning", "fractional_odd", "-o", out},
+      {"render", kWuson, "--color", "error-normal", "--normals", "derivative", "-o", out},
+      {"render", kWuson, "--color", "stpn-vs-pn", "-o", out},
+      {"render", kWuson, "--compare", "pn", "-o", out},
+      {"render", kWuson, "--compare", "flat,flat", "-o", out},
+      {"render", kWuson, "--config", (dir.path() / "missing.json").string(), "-o", out},
+      {"render", kWuson, "--color", "error-position", "--config", (dir.path() / "missing.json").string(), "-o", out},
+  };
+  for (const auto& args : bad) {
+    const auto r = run_tessim(args, dir.path());
+    std::string line;
+    for (const auto& a : args) line += a + " ";
+    EXPECT_EQ(r.status, 2) << line << r.err;
+    EXPECT_NE(r.err.find("tessim: error:"), std::string::npos) << line << r.err;
+    EXPECT_FALSE(fs::exists(out)) << line;
+  }
+}
