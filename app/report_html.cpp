@@ -227,7 +227,12 @@ std::string summary_section(const Stats& s) {
   };
   h += "<tr><th>mesh</th><td colspan=\"2\"><code>" + html_escape(s.text("mesh")) + "</code></td></tr>\n";
   row("triangles", grouped(s.count("triangles")), "triangles");
-  if (s.find("triangles_in")) row("triangles in (unit counter)", grouped(s.count("triangles_in")), "triangles_in");
+  // The unit's other run counters, as the registry has them (sim/blocks/counter_registry.hpp).
+  for (const sim::CounterRow& r : sim::kCounterRegistry) {
+    const std::string key = r.key;
+    if (r.block != sim::CounterBlock::Run || key == "cycles" || key == "vertices_out" || !s.find(key)) continue;
+    row(key + " (unit counter)", grouped(s.count(key)), key);
+  }
   row("CPG cycles per triangle", grouped(s.count("cpg_cycles_per_triangle")), "cpg_cycles_per_triangle");
   row("INT operations per vertex", format("%.3f", s.number("int.ops_per_vertex")), "int.ops_per_vertex");
   if (s.find("workload")) {

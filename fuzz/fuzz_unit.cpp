@@ -110,6 +110,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const TriangleFx& t : stream) vertices += static_cast<std::uint64_t>(pattern_vertex_count(t.L));
   if (u.vertices_out != vertices) fail("vertices_out");
   if (u.triangles_in != stream.size()) fail("triangles_in");
+  // A cycle takes a triangle, refuses one, or has none offered.
+  if (u.tri_stalls + u.triangles_in > u.cycles) fail("tri_stalls");
   // Every block of classes of the registry (sim/blocks/counter_registry.hpp): its classes sum to
   // the cycles, per INT block for the INT blocks, whose busy cannot exceed the cycles.
   for (const CounterBlockInfo& b : kCounterBlocks) {

@@ -53,6 +53,7 @@ module tess_unit #(
   output logic [CtrW-1:0]                 perf_cycles_o,
   output logic [CtrW-1:0]                 perf_tri_in_o,
   output logic [CtrW-1:0]                 perf_vtx_out_o,
+  output logic [CtrW-1:0]                 perf_tri_stalls_o,
   output logic [IntBlocks*CtrW-1:0]       perf_int_busy_o,
   output logic [CtrW-1:0]                 perf_te_context_limited_o,
   output logic [CtrW-1:0]                 perf_te_int_limited_o,
@@ -250,10 +251,11 @@ module tess_unit #(
 
   // ------------------------------------------------------------------ performance counters
   // One increment vector, one adder each: counters[k] += inc[k] every cycle out of reset.
-  localparam int unsigned NumCtr = 13 + IntBlocks;
+  localparam int unsigned NumCtr = 14 + IntBlocks;
   logic [NumCtr-1:0] ctr_inc;
   (* mem2reg *) logic [CtrW-1:0]   ctr_q [NumCtr];
   assign ctr_inc = {int_busy,
+                    tri_valid_i && !tri_ready_o,  // 13: triangles refused (input back-pressure)
                     te_int_limited,             // 12
                     te_ctx_limited,             // 11
                     !cpg_busy && !cpg_blocked,  // 10: cpg idle
@@ -288,8 +290,9 @@ module tess_unit #(
   assign perf_cpg_idle_o          = ctr_q[10];
   assign perf_te_context_limited_o = ctr_q[11];
   assign perf_te_int_limited_o    = ctr_q[12];
+  assign perf_tri_stalls_o        = ctr_q[13];
   for (genvar i = 0; i < IntBlocks; i++) begin : g_int_ctr
-    assign perf_int_busy_o[i*CtrW +: CtrW] = ctr_q[13 + i];
+    assign perf_int_busy_o[i*CtrW +: CtrW] = ctr_q[14 + i];
   end
 
   // Interface rules the unit itself must keep: a vertex offered and not taken stays, unchanged;

@@ -209,7 +209,7 @@ def main(argv):
             costed += 1
     out = args.output or (args.results if args.in_place else
                           str(Path(args.results).with_name(Path(args.results).stem + "-costs.csv")))
-    sweep.write_results(rows, out, sweep.param_order(sch))
+    sweep.write_results(rows, out, sweep.param_order(sch), sch["statistics"]["per_run"])
     print(f"costs.py: cost columns on {costed} of {len(rows)} rows -> {out}", file=sys.stderr)
     return 0
 

@@ -77,7 +77,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 ASSIMP_MODELS = Path("/usr/share/assimp/models")
-CACHE_SCHEMA = 3  # bump when the cache record or the error measurement changes
+CACHE_SCHEMA = 4  # bump when the cache record or the error measurement changes
 
 DEFAULT_TESSIM = REPO / "build" / "bin" / "tessim"
 # Keys that are not tessim configuration keys.
@@ -364,8 +364,9 @@ LEAD_COLUMNS = ["point", "key", "grids", "status"]
 HEADLINE_STATS = ["triangles", "triangles_in", "vertices_out", "cycles", "cycles_per_vertex",
                   "throughput", "bottleneck", "analytic.cycles_per_vertex", "analytic.bottleneck"]
 TRAIL_COLUMNS = ["message", "tessim_sha256"]
-TOP_LEVEL_STATS = {"triangles", "triangles_in", "vertices_out", "cycles", "cycles_per_vertex",
-                   "throughput", "bottleneck", "cpg_cycles_per_triangle", "wall_seconds", "schema_version"}
+# Top-level statistics besides the unit's run counters (which `tessim schema` lists).
+TOP_LEVEL_STATS = {"triangles", "cycles_per_vertex", "throughput", "bottleneck", "cpg_cycles_per_triangle",
+                   "wall_seconds", "schema_version"}
 
 
 def natural_key(name):
@@ -373,7 +374,7 @@ def natural_key(name):
     return [(0, int(p), "") if p.isdigit() else (1, 0, p) for p in name.split(".")]
 
 
-def columns_of(rows, order):
+def columns_of(rows, order, run_counters=()):
     """Lead columns, parameters, headline statistics, the other statistics (natural order),
     the error and cost columns, then message and binary hash."""
     present = set()
@@ -386,7 +387,7 @@ def columns_of(rows, order):
     extra = [k for k in rest if k.startswith("error.")] + [k for k in rest if k.startswith("cost_")]
     # Configuration keys this script does not know yet are the undotted names that are not
     # top-level statistics of tessim (only their column position depends on it).
-    unknown_params = [k for k in stats if "." not in k and k not in TOP_LEVEL_STATS]
+    unknown_params = [k for k in stats if "." not in k and k not in TOP_LEVEL_STATS and k not in run_counters]
     stats = [k for k in stats if k not in unknown_params]
     return ([k for k in LEAD_COLUMNS if k in present] + params + unknown_params +
             [k for k in HEADLINE_STATS if k in present] + stats + extra +
@@ -410,10 +411,10 @@ def write_atomic(path, text):
     os.replace(tmp, path)
 
 
-def write_results(rows, out_csv, order):
-    """`order`: param_order() of the schema."""
+def write_results(rows, out_csv, order, run_counters=()):
+    """`order`: param_order() of the schema; `run_counters`: its statistics.per_run."""
     out_csv = Path(out_csv)
-    cols = columns_of(rows, order)
+    cols = columns_of(rows, order, run_counters)
     import io
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
@@ -641,7 +642,7 @@ def cmd_sweep(argv):
 
         order = param_order(sch)
         rows = [make_row(i, p, g, key, records[key], tessim_sha, order) for i, p, g, key in keyed if key in records]
-        write_results(rows, args.output, order)
+        write_results(rows, args.output, order, sch["statistics"]["per_run"])
         rejected = [r for r in rows if r["status"] != "ok"]
         if rejected:
             print(f"sweep.py: {len(rejected)} points rejected as bad input (status input_error), "
@@ -721,7 +722,8 @@ def cmd_merge(argv):
                     help="tessim binary whose schema orders the parameter columns (default: build/bin/tessim)")
     args = ap.parse_args(argv)
     try:
-        order = param_order(schema(args.tessim))
+        sch = schema(args.tessim)
+        order = param_order(sch)
     except SpecError as e:
         print(f"sweep.py: error: {e}", file=sys.stderr)
         return 2
@@ -732,7 +734,7 @@ def cmd_merge(argv):
                 seen.add(r["key"])
                 rows.append(r)
     rows.sort(key=lambda r: int(r["point"]))
-    write_results(rows, args.output, order)
+    write_results(rows, args.output, order, sch["statistics"]["per_run"])
     print(f"sweep.py: merged {len(rows)} rows from {len(args.parts)} parts -> {args.output}", file=sys.stderr)
     return 0
 

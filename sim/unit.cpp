@@ -86,7 +86,9 @@ void Unit::tick(const UnitInputs& in) {
                                   cpg_.busy() || !tri_fifo_.empty());
   const CpgClass cpg_class = CpgBlock::classify(cpg);
   act_.cycle = counters_.cycles();
-  counters_.count(issued, te, cpg_class, tri_push, vtx_pop);
+  counters_.count(issued, te, cpg_class,
+                  (tri_push ? run_event(RunCounter::TrianglesIn) : 0) | (vtx_pop ? run_event(RunCounter::VerticesOut) : 0) |
+                      (in.tri_valid && !tri_push ? run_event(RunCounter::TriStalls) : 0));
   act_.ops_issued = issued;
   act_.te = te;
   act_.cpg = cpg_class;
@@ -124,6 +126,8 @@ std::uint64_t Unit::skip(std::uint64_t n, const UnitInputs& in, std::uint64_t is
   const bool upstream_busy = cpg_.busy() || !tri_fifo_.empty();
   const CpgAction cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
   const CpgClass cpg_class = CpgBlock::classify(cpg);
+  // A triangle offered in a quiet stretch is refused in each of its cycles (the TRI FIFO is full).
+  const RunEvents events = in.tri_valid ? run_event(RunCounter::TriStalls) : 0;
   int issued = 0;
   TeClass te = TeClass::Idle;
   if (te_.quiet()) {
@@ -132,7 +136,7 @@ std::uint64_t Unit::skip(std::uint64_t n, const UnitInputs& in, std::uint64_t is
     const bool head_waiting = te_.head_waiting();
     issued = te_.schedule();  // issues nothing
     te = te_.classify(issued, head_waiting, head_done, vtx_full, point_available, upstream_busy);
-    counters_.count(0, te, cpg_class, n);
+    counters_.count(0, te, cpg_class, events, n);
     te_.skip(n);
   } else {
     // The TE issues and completes ops, cycle by cycle, and nothing else moves; the stretch ends
@@ -146,7 +150,7 @@ std::uint64_t Unit::skip(std::uint64_t n, const UnitInputs& in, std::uint64_t is
       const bool head_waiting = te_.head_waiting();
       issued = te_.schedule();
       te = te_.classify(issued, head_waiting, head_done, vtx_full, point_available, upstream_busy);
-      counters_.count(issued, te, cpg_class, 1);
+      counters_.count(issued, te, cpg_class, events);
       te_.advance();
       ++cycles;
     }

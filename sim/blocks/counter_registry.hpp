@@ -8,8 +8,8 @@
 // the invariant that each block's classes sum to the cycles (fuzz/fuzz_unit.cpp, the tests).
 //
 // Adding a class or a counter: its row here, its perf_*_o output in rtl/tess_unit.sv, and the
-// block that decides it (e.g. Te::classify in sim/blocks/te.hpp); docs/statistics.md has the
-// list. tests/sim/counter_registry_test.cpp checks the rows against the RTL's ports.
+// block that decides it (e.g. Te::classify in sim/blocks/te.hpp; a run counter's RunEvents bit in
+// Unit::tick and Unit::skip); docs/statistics.md has the list. tests/sim/counter_registry_test.cpp checks the rows against the RTL's ports.
 #pragma once
 
 #include <array>
@@ -36,7 +36,9 @@
   X(Run, TrianglesIn, triangles_in, "triangles (the unit's input counter; equal to triangles after a whole run)", \
     perf_tri_in_o, 1, "", "triangles taken from the input stream (tri_valid and tri_ready)")                 \
   X(Run, VerticesOut, vertices_out, "vertices", perf_vtx_out_o, 2, "",                                      \
-    "vertices the GPE accepted (vtx_valid and vtx_ready)")
+    "vertices the GPE accepted (vtx_valid and vtx_ready)")                                                 \
+  X(Run, TriStalls, tri_stalls, "cycles", perf_tri_stalls_o, 3, "",                                         \
+    "cycles a triangle was offered and refused (tri_valid, TRI FIFO full): the unit's back-pressure on its input")
 
 #define TESSIM_INT_CLASSES(X)                                                           \
   X(Int, Busy, busy, "cycles", perf_int_busy_o, 0, "", "issued an op this cycle")       \

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <array>
+#include <bit>
+#include <cstddef>
 #include <cstdint>
 
 #include "sim/blocks/counter_registry.hpp"
@@ -13,30 +15,34 @@ namespace tessim::sim {
 
 // Per cycle it only increments a few array entries (this runs every simulated cycle); the
 // per-block figures are derived when stats() is read.
+// The run counters (registry block Run) one cycle increments besides `cycles`: one bit per
+// RunCounter, set by the block that decides the event (Unit::tick).
+using RunEvents = std::uint32_t;
+static_assert(row_count(CounterBlock::Run) <= 32, "RunEvents has a bit per run counter");
+constexpr RunEvents run_event(RunCounter c) { return RunEvents{1} << static_cast<unsigned>(c); }
+
+// Per cycle it only increments a few array entries (this runs every simulated cycle); the
+// per-block figures are derived when stats() is read.
 class Counters {
  public:
   explicit Counters(int int_blocks) : int_blocks_(int_blocks) { reset(); }
 
   void reset() {
-    cycles_ = triangles_in_ = vertices_out_ = 0;
+    run_.fill(0);
     issued_hist_.fill(0);
     te_ = {};
     cpg_ = {};
   }
 
-  std::uint64_t cycles() const { return cycles_; }
+  std::uint64_t cycles() const { return run_[static_cast<std::size_t>(RunCounter::Cycles)]; }
   // Cycles so far per TE class (cheap: nothing derived).
   const ClassCounts<TeClass>& te_class_cycles() const { return te_; }
 
-  // One cycle: `issued` ops went to INT blocks 0..issued-1.
-  void count(int issued, TeClass te, CpgClass cpg, bool tri_push, bool vtx_pop) {
-    count(issued, te, cpg, 1);
-    triangles_in_ += tri_push;
-    vertices_out_ += vtx_pop;
-  }
-  // `cycles` identical cycles that move no data (fast-forwarded).
-  void count(int issued, TeClass te, CpgClass cpg, std::uint64_t cycles) {
-    cycles_ += cycles;
+  // `cycles` identical cycles (one, or a fast-forwarded stretch that moves no data): `issued` ops
+  // went to INT blocks 0..issued-1 in each, and each had the run events `events`.
+  void count(int issued, TeClass te, CpgClass cpg, RunEvents events, std::uint64_t cycles = 1) {
+    events |= run_event(RunCounter::Cycles);
+    for (; events != 0; events &= events - 1) run_[static_cast<std::size_t>(std::countr_zero(events))] += cycles;
     issued_hist_[static_cast<std::size_t>(issued)] += cycles;
     te_[te] += cycles;
     cpg_[cpg] += cycles;
@@ -44,12 +50,12 @@ class Counters {
 
   const UnitCounters& stats() const {
     UnitCounters& s = stats_;
-    s.cycles = cycles_;
-    s.triangles_in = triangles_in_;
-    s.vertices_out = vertices_out_;
+#define TESSIM_RUN_STAT(BLOCK, ID, KEY, ...) s.KEY = run_[static_cast<std::size_t>(RunCounter::ID)];
+    TESSIM_RUN_COUNTERS(TESSIM_RUN_STAT)
+#undef TESSIM_RUN_STAT
     s.int_blocks = int_blocks_;
     // Block i was busy in every cycle that issued more than i ops.
-    std::uint64_t busy = cycles_;
+    std::uint64_t busy = cycles();
     for (int i = 0; i < int_blocks_; ++i) {
       busy -= issued_hist_[static_cast<std::size_t>(i)];
       s.int_busy[static_cast<std::size_t>(i)] = busy;
@@ -61,7 +67,7 @@ class Counters {
 
  private:
   int int_blocks_;
-  std::uint64_t cycles_ = 0, triangles_in_ = 0, vertices_out_ = 0;
+  std::array<std::uint64_t, row_count(CounterBlock::Run)> run_{};
   std::array<std::uint64_t, kMaxIntBlocks + 1> issued_hist_{};  // index k: cycles that issued k ops
   ClassCounts<TeClass> te_;
   ClassCounts<CpgClass> cpg_;

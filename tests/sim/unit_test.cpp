@@ -454,6 +454,36 @@ TEST(UnitStatistics, ClassesAddUpPerBlock) {
   }
 }
 
+// The host offers a triangle in every cycle until the last one is taken, so every cycle up to
+// that one either takes a triangle or refuses it: tri_stalls = last push cycle + 1 - triangles_in.
+TEST(UnitStatistics, TriStallsAreTheCyclesAnOfferedTriangleWaits) {
+  struct LastPush : CycleObserver {
+    std::uint64_t cycle = 0;
+    bool on_cycle(const Unit& unit, const GpeCycle&) override {
+      if (unit.activity().tri_pushed) cycle = unit.activity().cycle;
+      return true;
+    }
+  };
+  const Mesh mesh = bumpy_sphere(1);
+  for (int depth : {1, 2, 8}) {
+    for (int k : {1, 8}) {
+      UnitConfig cfg = config(2, 4, 1, k, 3);
+      cfg.tri_fifo_depth = depth;
+      cfg.validate("test");
+      LastPush last;
+      SimHooks hooks;
+      hooks.observers.push_back(&last);
+      const SimResult r = simulate(mesh, cfg, hooks);
+      EXPECT_EQ(r.unit.triangles_in, mesh.triangle_count());
+      EXPECT_EQ(r.unit.tri_stalls, last.cycle + 1 - r.unit.triangles_in) << "depth " << depth << ", K " << k;
+      // The CPG takes C + 1 cycles per triangle: a FIFO of a few entries fills at once.
+      EXPECT_GT(r.unit.tri_stalls, r.unit.cycles / 2) << "depth " << depth << ", K " << k;
+      // The fast-forwarded run counts the same refusals.
+      EXPECT_EQ(simulate(mesh, cfg).unit.tri_stalls, r.unit.tri_stalls);
+    }
+  }
+}
+
 TEST(UnitStatistics, RealMeshDefaultConfig) {
   const Mesh mesh = load_mesh(kWuson);
   UnitConfig cfg;
