@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "app/commands.hpp"
+#include "model/d3d11_pattern.hpp"
 #include "model/error.hpp"
 #include "model/output_file.hpp"
 #include "model/pattern.hpp"

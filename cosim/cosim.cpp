@@ -411,7 +411,7 @@ void assign_random_patterns(std::vector<sim::TriangleFx>& stream, std::uint64_t 
     do {
       const std::array<float, 3> outer{factor(), factor(), factor()};
       const float inner = rng.next() % 4 == 0 ? 1.0f : factor();
-      f = d3d11_tri_factors(outer, inner, p);
+      f = sim::d3d11_host_factors(outer, inner, p);
     } while (f.culled);
     sim::set_d3d11_pattern(t, f, p);
   }

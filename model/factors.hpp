@@ -17,7 +17,7 @@
 
 #include <glm/glm.hpp>
 
-#include "model/d3d11_pattern.hpp"
+#include "model/d3d11_types.hpp"
 #include "model/mesh.hpp"
 
 namespace tessim {

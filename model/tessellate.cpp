@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "model/d3d11_pattern.hpp"
 #include "model/error.hpp"
 #include "model/pattern.hpp"
 #include "model/pn.hpp"

@@ -13,7 +13,7 @@
 // reaches 2L). q and r come from a 64-entry constant table indexed by L. At j = 0 the weight
 // is 0 with remainder L, so a new row or patch needs no state.
 //
-// D3D11 pattern (docs/patterns.md; model/d3d11_pattern.cpp D3D11PointWalker): the outer ring
+// D3D11 pattern (docs/patterns.md; sim/d3d11_walk.cpp D3D11PointWalker): the outer ring
 // from the corner v = 1, edge by edge, then the rings inwards, then the centre of an even
 // pattern. Each point is one placement on the current edge (tess_dpg_place, from the setup the
 // FSU stored with the patch); an inner ring's offset from the outer edges (2/3 t_r, and half of

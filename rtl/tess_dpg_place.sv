@@ -1,5 +1,5 @@
 // The position of point `index_i` along an edge set up by tess_fsu_edge, 16.16 in [0, 1]
-// (docs/microarchitecture.md §7; model/d3d11_pattern.cpp d3d11_place). Points past the middle
+// (docs/microarchitecture.md §7; sim/d3d11_walk.cpp d3d11_place). Points past the middle
 // are 1 - t of their mirror, so an edge gives the same points walked from either end; the
 // middle is exact; otherwise t = (i' fw + i cw + 2^15) >> 16, with i' = i - 1 past the split.
 module tess_dpg_place (

@@ -287,7 +287,7 @@ std::string tri_pattern_problem(const TriangleFx& tri) {
   }
   // fractional_odd: an inner factor of exactly 1 is the single triangle's alone. Beside a larger
   // outer factor it has no ring to cut (its edge has 2 points where the ring needs 4): the host
-  // raises it to 1 + 2^-16 (d3d11_tri_factors), and the unit's contract excludes it.
+  // raises it to 1 + 2^-16 (d3d11_host_factors), and the unit's contract excludes it.
   if (tri.pattern == TriPattern::fractional_odd && tri.factors[3] == one &&
       (tri.factors[0] != one || tri.factors[1] != one || tri.factors[2] != one))
     return "inner factor 0x10000 (16.16) is 1 beside an outer factor above 1 (fractional_odd: the host sends 1 + 2^-16)";

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "model/d3d11_pattern.hpp"
+#include "sim/d3d11_walk.hpp"
 #include "model/normal_mode.hpp"
 #include "sim/fixed.hpp"
 
@@ -35,7 +35,7 @@ struct TriangleFx {
   int L = 1;                 // tessellation factor 1..64 of the uniform pattern
   TriPattern pattern = TriPattern::uniform;
   // D3D11 patterns: outer factors e0, e1, e2 and the inner factor, unsigned 16.16, as the host
-  // hands them over: clamped to the partitioning's range and rounded (d3d11_tri_factors()).
+  // hands them over: clamped to the partitioning's range and rounded (d3d11_host_factors()).
   std::array<Fixed16, 4> factors{};
   std::uint32_t id = 0;      // patch id, passed through to every output vertex
   // Scalar tags per corner; all neutral for plain PN. They cross the input stream only to a CPG

@@ -110,7 +110,7 @@ std::optional<TriangleFx> to_fixed(const Mesh& mesh, std::size_t index, const Ho
                                    const NumberFormat& fmt, const TessSettings& settings, bool with_tags) {
   if (settings.kind == PatternKind::Uniform) return to_fixed(mesh, index, scaling, fmt, settings.L, with_tags);
   const PatchFactors f = patch_factors(settings, mesh, index);
-  const D3D11Factors processed = d3d11_tri_factors(f.outer, f.inner, settings.partitioning);
+  const D3D11Factors processed = d3d11_host_factors(f.outer, f.inner, settings.partitioning);
   if (processed.culled) return std::nullopt;
   TriangleFx tri = to_fixed(mesh, index, scaling, fmt, 1, with_tags);
   set_d3d11_pattern(tri, processed, settings.partitioning);

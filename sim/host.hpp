@@ -59,7 +59,7 @@ std::size_t tags_lost_in_fixed_point(const Mesh& mesh, const NumberFormat& fmt);
 std::string tags_lost_warning(const Mesh& mesh, const NumberFormat& fmt);
 
 // Gives the triangle the D3D11 pattern with factors `f` as the tessellator processes them
-// (d3d11_tri_factors: clamped, rounded, 16.16); pow2 travels as integer. `f` must not be culled:
+// (d3d11_host_factors: clamped, rounded, 16.16); pow2 travels as integer. `f` must not be culled:
 // a culled patch has no points and the host does not send it.
 void set_d3d11_pattern(TriangleFx& tri, const D3D11Factors& f, Partitioning partitioning);
 

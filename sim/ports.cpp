@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/d3d11_pattern.hpp"
+#include "sim/d3d11_walk.hpp"
 #include "sim/blocks/counter_registry.hpp"
 #include "sim/cpg.hpp"
 #include "sim/host.hpp"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -152,10 +153,12 @@ ArithmeticErrors ArithmeticCheck::result() const {
   return e;
 }
 
-MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged)
+MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged,
+                       const TessSettings* d3d11)
     : mesh_(mesh), scaling_(scaling), cfg_(cfg), scalar_tagged_(scalar_tagged && mesh.has_tags()),
       diagonal_(bounding_box(mesh).diagonal()) {
   if (!(diagonal_ > 0)) diagonal_ = 1.0;  // a single point: absolute errors
+  if (d3d11 && d3d11->kind == PatternKind::D3D11) d3d11_.emplace(*d3d11);
 }
 
 VertexErrors MeshErrors::add(const VertexFx& v) {
@@ -170,13 +173,26 @@ VertexErrors MeshErrors::add(const VertexFx& v) {
     }
     patch_ = scalar_tagged_ ? make_stpn_patch(in, tags, cfg_.normals) : make_patch(in, cfg_.normals);
     patch_id_ = v.id;
+    // A copy: the cache may drop its patterns when it grows.
+    if (v.L == 0 && d3d11_) patch_points_ = d3d11_->pattern(mesh_, v.id).points;
   }
   // The reference at the exact domain point, as `tessim tessellate` evaluates it: (j/L, k/L) of
-  // the uniform pattern, the 16.16 point itself of a D3D11 pattern (L = 0; exact in B >= 16 bits).
-  const double segments = static_cast<double>(v.L);
-  const PnVertex ref = v.L > 0 ? eval_de_casteljau(patch_, v.j / segments, v.k / segments)
-                               : eval_de_casteljau(patch_, std::ldexp(static_cast<double>(v.u), -cfg_.format.bary_bits),
-                                                   std::ldexp(static_cast<double>(v.v), -cfg_.format.bary_bits));
+  // the uniform pattern, the 16.16 point of a D3D11 pattern (L = 0; exact in B >= 16 bits), which
+  // is the reference pattern's point of that index: the unit's walk and the reference are two
+  // implementations of the pattern (docs/patterns.md §8).
+  glm::dvec2 point;
+  if (v.L > 0) {
+    const double segments = static_cast<double>(v.L);
+    point = {v.j / segments, v.k / segments};
+  } else {
+    point = {std::ldexp(static_cast<double>(v.u), -cfg_.format.bary_bits),
+             std::ldexp(static_cast<double>(v.v), -cfg_.format.bary_bits)};
+    const auto i = static_cast<std::size_t>(v.index);
+    if (d3d11_ && (i >= patch_points_.size() || patch_points_[i] != point))
+      throw std::logic_error("cycle model: D3D11 vertex " + describe(v) + " is not point " + std::to_string(i) +
+                             " of the reference pattern of its patch");
+  }
+  const PnVertex ref = eval_de_casteljau(patch_, point.x, point.y);
   const glm::dvec3 pos = position_from_fixed(v.pos, scaling_, cfg_.format);
   VertexErrors e;
   e.position = glm::length(pos - ref.position) / diagonal_;

@@ -7,7 +7,9 @@
 //  - MeshErrors: the reference of the mesh as the file gives it, evaluated at the exact domain
 //    point (j/L, k/L), against the output in mesh coordinates: what a user of the unit sees
 //    (input quantization, barycentric rounding and arithmetic together). `tessim sim --errors`
-//    reports it; the study's error columns are these figures.
+//    reports it; the study's error columns are these figures. A D3D11 vertex is evaluated at
+//    its point of the reference's own pattern (model/d3d11_pattern.hpp), which the unit's point
+//    must equal bit for bit.
 // Positions are relative to the bounding-box diagonal, normal errors are angles in radians.
 #pragma once
 
@@ -22,6 +24,7 @@
 
 #include "model/mesh.hpp"
 #include "model/pn.hpp"
+#include "model/tessellate.hpp"
 #include "sim/config.hpp"
 #include "sim/error_bound.hpp"
 #include "sim/host.hpp"
@@ -102,9 +105,12 @@ class MeshErrors {
  public:
   // `scalar_tagged`: the reference of a tagged mesh is its scalar-tagged surface (the output
   // came from the fixed-point scalar-tagged arithmetic); otherwise plain PN whatever the tags.
-  MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged = false);
+  // `d3d11`: the D3D11 settings the unit ran with (kept by reference), needed for D3D11 vertices.
+  MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged = false,
+             const TessSettings* d3d11 = nullptr);
   // Measures the vertex, adds it to the statistics and returns its own errors (the heat maps
-  // of `tessim render --color error-position|error-normal`).
+  // of `tessim render --color error-position|error-normal`). Throws std::logic_error for a
+  // D3D11 vertex that is not its index's point of the reference pattern.
   VertexErrors add(const VertexFx& v);
   ErrorStats result() const { return acc_.result(); }
 
@@ -116,6 +122,8 @@ class MeshErrors {
   double diagonal_ = 1.0;
   std::optional<std::uint32_t> patch_id_;
   PnPatch patch_;
+  std::optional<PatternCache> d3d11_;     // the reference's D3D11 patterns
+  std::vector<glm::dvec2> patch_points_;  // the current patch's points of it
   ErrorAccumulator acc_;
 };
 

@@ -151,7 +151,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
 
   std::vector<glm::dvec3> patch_pos, patch_nrm;
   if (hooks.on_patch) {
-    const int largest = d3d11 ? d3d11_setup(d3d11_tri_factors({64.0f, 64.0f, 64.0f}, 64.0f, Partitioning::integer)).point_count
+    const int largest = d3d11 ? d3d11_setup(d3d11_host_factors({64.0f, 64.0f, 64.0f}, 64.0f, Partitioning::integer)).point_count
                               : pattern_vertex_count(factors.empty() ? cfg.tess_factor : kMaxTessFactor);
     patch_pos.resize(static_cast<std::size_t>(largest));
     patch_nrm.resize(static_cast<std::size_t>(largest));
@@ -160,7 +160,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   std::optional<MeshErrors> mesh_errors;
   std::optional<ArithmeticCheck> arithmetic;
   if (hooks.measure_errors) {
-    mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags);
+    mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags, patterns.d3d11);
     arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, patterns));
   }
 

@@ -68,7 +68,7 @@ class MeshSource {
   int patch_points(std::size_t t) const {
     if (!patterns_.d3d11) return pattern_vertex_count(factor(t));
     const PatchFactors f = patch_factors(*patterns_.d3d11, mesh_, t);
-    const D3D11Factors processed = d3d11_tri_factors(f.outer, f.inner, patterns_.d3d11->partitioning);
+    const D3D11Factors processed = d3d11_host_factors(f.outer, f.inner, patterns_.d3d11->partitioning);
     return processed.culled ? 0 : d3d11_setup(processed).point_count;
   }
   void rewind() {

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "model/d3d11_pattern.hpp"
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"

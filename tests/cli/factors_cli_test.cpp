@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/d3d11_pattern.hpp"
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"

@@ -113,7 +113,7 @@ TEST(RandomD3D11Cosim, LargestPatternsAndTheirLimits) {
       {{64, 1, 33}, 17, Partitioning::pow2},            {{2, 2, 2}, 2, Partitioning::fractional_even}};
   for (std::size_t i = 0; i < stream.size(); ++i) {
     const auto& [outer, inner, p] = sets[i];
-    sim::set_d3d11_pattern(stream[i], d3d11_tri_factors(outer, inner, p), p);
+    sim::set_d3d11_pattern(stream[i], sim::d3d11_host_factors(outer, inner, p), p);
   }
   EXPECT_EQ(sim::patch_vertex_count(stream[0]), 3169);
   EXPECT_EQ(sim::patch_vertex_count(stream[3]), 3);

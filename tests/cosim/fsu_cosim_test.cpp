@@ -1,5 +1,5 @@
 // The factor setup unit on raw factors (docs/rtl.md, FSU): the host sends factors processed by
-// d3d11_tri_factors, which never produces some of what the unit's interface admitted — a
+// sim::d3d11_host_factors, which never produces some of what the unit's interface admitted — a
 // fractional_odd inner factor of exactly 1 beside larger outer factors (the host raises it to
 // 1 + 2^-16). Driven with it, RTL and cycle model parted at its first inner-ring point (the model
 // placed it outside the domain): the interface now refuses it. Everything else the interface

@@ -31,7 +31,7 @@ std::vector<sim::TriangleFx> stream_with_large_patches(const sim::NumberFormat& 
                          Large{4, Partitioning::fractional_odd, {12.3f, 5.01f, 40.9f}, 47.3f},
                          Large{7, Partitioning::fractional_even, {64, 64, 64}, 64},
                          Large{8, Partitioning::pow2, {3, 17, 9}, 30}}) {
-    const D3D11Factors f = d3d11_tri_factors(l.outer, l.inner, l.p);
+    const D3D11Factors f = sim::d3d11_host_factors(l.outer, l.inner, l.p);
     sim::set_d3d11_pattern(s[l.at], f, l.p);
     EXPECT_GT(sim::patch_vertex_count(s[l.at]), 500) << "a large patch";
   }

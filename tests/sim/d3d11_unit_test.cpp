@@ -94,7 +94,7 @@ TEST(D3D11Dpg, HandsOutThePatternsPointsInOrder) {
     for (std::size_t i = 0; i < sets.size(); ++i) {
       TriangleFx tri = to_fixed(mesh, i, scaling, cfg.format, 1);
       tri.id = static_cast<std::uint32_t>(i);
-      set_d3d11_pattern(tri, d3d11_tri_factors(sets[i].outer, sets[i].inner, sets[i].partitioning), sets[i].partitioning);
+      set_d3d11_pattern(tri, d3d11_host_factors(sets[i].outer, sets[i].inner, sets[i].partitioning), sets[i].partitioning);
       stream.push_back(tri);
     }
     const std::vector<VertexFx> got = run(stream, cfg);
@@ -132,7 +132,7 @@ TEST(D3D11Dpg, UniformAndD3D11PatchesInterleave) {
     if (i % 3 != 0) {
       const auto p = static_cast<Partitioning>(i % 4);
       const float x = 1.0f + 0.37f * static_cast<float>(i % 11);
-      set_d3d11_pattern(tri, d3d11_tri_factors({x, x + 1.3f, 2.0f}, x, p), p);
+      set_d3d11_pattern(tri, d3d11_host_factors({x, x + 1.3f, 2.0f}, x, p), p);
     }
     stream.push_back(tri);
   }
@@ -172,7 +172,7 @@ TEST_P(D3D11CrackFree, SharedEdgesAreBitIdentical) {
     const PatchFactors f = patch_factors(s, mesh, t);
     for (float x : f.outer) factors_seen.insert(x);
     TriangleFx tri = to_fixed(mesh, t, scaling, cfg.format, 1);
-    set_d3d11_pattern(tri, d3d11_tri_factors(f.outer, f.inner, partitioning), partitioning);
+    set_d3d11_pattern(tri, d3d11_host_factors(f.outer, f.inner, partitioning), partitioning);
     stream.push_back(tri);
   }
   ASSERT_GT(factors_seen.size(), 50u) << "the camera should make the factors vary";
