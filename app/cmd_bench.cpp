@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "model/error.hpp"
-#include "model/mesh_io.hpp"
 #include "app/commands.hpp"
+#include "model/base/error.hpp"
+#include "model/mesh_io.hpp"
 #include "sim/config.hpp"
 #include "sim/simulate.hpp"
 

@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
-#include "model/error.hpp"
-#include "model/input_file.hpp"
+#include "model/base/error.hpp"
+#include "model/base/input_file.hpp"
 #include "sim/json_input.hpp"
 #include "sim/simulate.hpp"
 

@@ -11,19 +11,19 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
-#include "model/input_file.hpp"
-#include "model/mesh_io.hpp"
-#include "model/output_file.hpp"
-#include "model/pattern.hpp"
+#include "app/commands.hpp"
+#include "app/config_flags.hpp"
+#include "cosim/cosim.hpp"
 #include "cosim/coverage.hpp"
 #include "cosim/wave.hpp"
+#include "model/base/error.hpp"
+#include "model/base/input_file.hpp"
+#include "model/base/output_file.hpp"
+#include "model/base/progress.hpp"
+#include "model/mesh_io.hpp"
+#include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "app/commands.hpp"
-#include "model/progress.hpp"
-#include "app/config_flags.hpp"
 #include "sim/config.hpp"
-#include "cosim/cosim.hpp"
 #include "sim/host.hpp"
 #include "sim/json_input.hpp"
 

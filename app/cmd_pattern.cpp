@@ -15,9 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "model/base/error.hpp"
+#include "model/base/output_file.hpp"
 #include "model/d3d11_pattern.hpp"
-#include "model/error.hpp"
-#include "model/output_file.hpp"
 #include "render/canvas.hpp"
 #include "render/raster.hpp"
 

@@ -15,17 +15,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
-#include "model/input_file.hpp"
-#include "model/output_file.hpp"
+#include "app/commands.hpp"
+#include "model/base/error.hpp"
+#include "model/base/input_file.hpp"
+#include "model/base/output_file.hpp"
+#include "model/base/progress.hpp"
+#include "model/factors.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/normal_mode.hpp"
 #include "model/pattern.hpp"
-#include "model/progress.hpp"
-#include "model/factors.hpp"
 #include "model/tessellate.hpp"
-#include "app/commands.hpp"
 #include "render/annotate.hpp"
 #include "render/raster.hpp"
 #include "sim/config.hpp"

@@ -14,12 +14,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/json_input.hpp"
 #include "app/commands.hpp"
 #include "app/report_html.hpp"
-#include "model/error.hpp"
-#include "model/input_file.hpp"
-#include "model/output_file.hpp"
+#include "model/base/error.hpp"
+#include "model/base/input_file.hpp"
+#include "model/base/output_file.hpp"
+#include "sim/json_input.hpp"
 
 namespace tessim::app {
 

@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "model/error.hpp"
+#include "app/commands.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/testbench.hpp"
-#include "app/commands.hpp"
 #include "sim/host.hpp"
+#include "sim/testbench.hpp"
 #include "sim/unit.hpp"
 
 namespace tessim::app {

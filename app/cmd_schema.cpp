@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "sim/params.hpp"
 
 namespace tessim::app {

@@ -15,15 +15,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
-#include "model/mesh_io.hpp"
-#include "model/output_file.hpp"
-#include "model/pattern.hpp"
-#include "model/progress.hpp"
-#include "model/tessellate.hpp"
-#include "model/weld.hpp"
 #include "app/commands.hpp"
 #include "app/config_flags.hpp"
+#include "model/base/error.hpp"
+#include "model/base/output_file.hpp"
+#include "model/base/progress.hpp"
+#include "model/mesh_io.hpp"
+#include "model/pattern.hpp"
+#include "model/tessellate.hpp"
+#include "model/weld.hpp"
 #include "sim/chunked.hpp"
 #include "sim/config.hpp"
 #include "sim/simulate.hpp"

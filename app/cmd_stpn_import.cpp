@@ -7,10 +7,10 @@
 #include <string>
 
 #include "app/commands.hpp"
-#include "model/error.hpp"
+#include "model/base/error.hpp"
+#include "model/base/output_file.hpp"
 #include "model/io/format.hpp"
 #include "model/mesh_io.hpp"
-#include "model/output_file.hpp"
 #include "model/stpn_import.hpp"
 
 namespace tessim::app {

@@ -7,16 +7,16 @@
 #include <memory>
 #include <string>
 
-#include "model/error.hpp"
+#include "app/commands.hpp"
+#include "model/base/error.hpp"
+#include "model/base/output_file.hpp"
+#include "model/base/progress.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/normal_mode.hpp"
-#include "model/output_file.hpp"
 #include "model/pattern.hpp"
-#include "model/progress.hpp"
 #include "model/tessellate.hpp"
 #include "model/weld.hpp"
-#include "app/commands.hpp"
 
 namespace tessim::app {
 

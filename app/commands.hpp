@@ -12,7 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 
 #include "model/factors.hpp"
 #include "model/mesh.hpp"

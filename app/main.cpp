@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "model/error.hpp"
 #include "app/commands.hpp"
+#include "model/base/error.hpp"
 #include "sim/version.hpp"
 
 namespace {

@@ -12,9 +12,9 @@
 #include <system_error>
 
 #include "app/commands.hpp"
+#include "model/base/error.hpp"
+#include "model/base/output_file.hpp"
 #include "model/d3d11_pattern.hpp"
-#include "model/error.hpp"
-#include "model/output_file.hpp"
 #include "model/pattern.hpp"
 #include "render/raster.hpp"
 #include "sim/host.hpp"
@@ -59,7 +59,7 @@ void check_output_paths(const std::vector<OutputPath>& outputs) {
   const char* stdout_option = nullptr;
   for (const OutputPath& o : outputs) {
     if (o.path.empty()) continue;
-    // Standard output, a device or a pipe is written directly (model/output_file.hpp): no
+    // Standard output, a device or a pipe is written directly (model/base/output_file.hpp): no
     // temporary beside it. Two outputs cannot share standard output or a pipe; /dev/null and
     // other character devices take any number.
     const OutputKind kind = output_kind(o.path);

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "sim/blocks/counter_registry.hpp"
 #include "sim/params.hpp"
 #include "sim/simulate.hpp"

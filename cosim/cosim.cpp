@@ -9,7 +9,7 @@
 
 #include "cosim/checkers.hpp"
 #include "cosim/wave.hpp"
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/dut.hpp"

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/pattern.hpp"
 #include "sim/fixed.hpp"
 

@@ -11,8 +11,8 @@
 #include <system_error>
 #include <vector>
 
-#include "model/error.hpp"
-#include "model/output_file.hpp"
+#include "model/base/error.hpp"
+#include "model/base/output_file.hpp"
 #include "sim/cpg.hpp"
 #include "sim/ports.hpp"
 

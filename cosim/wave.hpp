@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "model/output_file.hpp"
+#include "model/base/output_file.hpp"
 #include "sim/config.hpp"
 
 namespace tessim::cosim {
@@ -36,7 +36,7 @@ std::filesystem::path wave_recording_path(const std::filesystem::path& path);
 
 // The temporaries of a dump's recording (the recording, its .hier and .pak side files) entered in
 // the table of files removed when the process is killed by SIGINT, SIGTERM or SIGHUP
-// (model/output_file.hpp), and removed when this object goes, so that neither an interrupted nor
+// (model/base/output_file.hpp), and removed when this object goes, so that neither an interrupted nor
 // a failed run leaves a partial recording behind. Hold one for as long as runs may record into
 // `path`.
 class WaveTemporaries {

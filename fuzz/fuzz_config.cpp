@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "sim/config.hpp"
 #include "sim/unit.hpp"
 

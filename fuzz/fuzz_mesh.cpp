@@ -11,7 +11,7 @@
 #include <fstream>
 #include <string>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/io/format.hpp"
 #include "model/io/ply.hpp"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/pattern.hpp"
 
 namespace tessim {

@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <utility>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 
 namespace tessim {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/io/import.hpp"
 #include "model/mesh_build.hpp"
 #include "model/st_mesh.hpp"

@@ -80,7 +80,7 @@ class MeshWriter {
 };
 
 // Returns true if `path` has an extension MeshWriter accepts (.ply or .obj, any case), or is
-// written directly (standard output "-", a device, a pipe: binary PLY, model/output_file.hpp).
+// written directly (standard output "-", a device, a pipe: binary PLY, model/base/output_file.hpp).
 bool is_supported_output(const std::filesystem::path& path);
 
 }  // namespace tessim

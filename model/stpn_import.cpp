@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/io/import.hpp"
 #include "model/mesh_build.hpp"
 #include "model/st_mesh.hpp"

@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
+#include "model/base/error.hpp"
 #include "model/d3d11_pattern.hpp"
-#include "model/error.hpp"
 #include "model/pattern.hpp"
 #include "model/pn.hpp"
 

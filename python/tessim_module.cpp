@@ -19,7 +19,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/normal_mode.hpp"

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "model/error.hpp"
-#include "model/output_file.hpp"
+#include "model/base/error.hpp"
+#include "model/base/output_file.hpp"
 #include "render/annotate.hpp"
 #include "render/imageio/imageio_loader.hpp"
 

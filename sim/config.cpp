@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/pattern.hpp"
 #include "sim/cpg.hpp"
 #include "sim/json_input.hpp"

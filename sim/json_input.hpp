@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 
 namespace tessim::sim {
 

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/pattern.hpp"
 #include "sim/analytic.hpp"
 #include "sim/chunked.hpp"

@@ -56,7 +56,7 @@ struct SimHooks {
   // Set by another thread to stop the run at the next patch boundary (SimCancelled is thrown):
   // the other chunks of a chunked run after one of them failed.
   const std::atomic<bool>* cancel = nullptr;
-  // Progress for a person (model/progress.hpp): every patch adds its vertices once the GPE has
+  // Progress for a person (model/base/progress.hpp): every patch adds its vertices once the GPE has
   // accepted its last one. Shared by the chunks of a chunked run.
   std::atomic<std::uint64_t>* vertices_done = nullptr;
 };

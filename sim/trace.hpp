@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "model/output_file.hpp"
+#include "model/base/output_file.hpp"
 #include "sim/simulate.hpp"
 
 namespace tessim::sim {

@@ -21,7 +21,7 @@
 #include <string_view>
 #include <vector>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 
 namespace tessim::io {
 

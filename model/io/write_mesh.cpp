@@ -10,10 +10,10 @@
 #include <utility>
 #include <vector>
 
+#include "model/base/output_file.hpp"
 #include "model/io/format.hpp"
 #include "model/io/ply.hpp"
 #include "model/mesh_io.hpp"
-#include "model/output_file.hpp"
 #include "model/pattern.hpp"
 
 namespace tessim {

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "rtl/verilated/verilated_unit.hpp"
 #include "sim/params.hpp"
 

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/config_flags.hpp"
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "sim/config.hpp"
 #include "sim/params.hpp"
 #include "sim/rtl_builds.hpp"

@@ -9,10 +9,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "cosim/cosim.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "cosim/cosim.hpp"
 #include "sim/host.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "cosim/cosim.hpp"
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/cpg.hpp"
 #include "sim/unit.hpp"

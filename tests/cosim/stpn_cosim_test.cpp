@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cosim/cosim.hpp"
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/stpn_import.hpp"
 #include "sim/cpg.hpp"
 #include "sim/host.hpp"

@@ -16,12 +16,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
+#include "model/pattern.hpp"
 #include "tests/support/rejects.hpp"
 #include "tests/support/temp_dir.hpp"
-#include "model/pattern.hpp"
 
 namespace tessim {
 namespace {

@@ -1,4 +1,4 @@
-// The progress meter (model/progress.hpp) on an injected clock and stream: what the line says
+// The progress meter (model/base/progress.hpp) on an injected clock and stream: what the line says
 // (done/total, share, rate, time left), how often it is redrawn, how it ends.
 #include <unistd.h>
 
@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/progress.hpp"
+#include "model/base/progress.hpp"
 
 namespace tessim {
 namespace {

@@ -19,7 +19,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"

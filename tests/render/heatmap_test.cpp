@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "render/annotate.hpp"
 #include "render/raster.hpp"
 

@@ -15,7 +15,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "render/raster.hpp"
 #include "tests/support/read_image.hpp"
 

@@ -11,7 +11,7 @@
 #include <tuple>
 #include <vector>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"

@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
 #include "sim/config.hpp"
 #include "sim/cpg.hpp"

@@ -12,7 +12,7 @@
 #include <tuple>
 #include <vector>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
 #include "model/pn.hpp"
 #include "model/stpn_import.hpp"

@@ -23,7 +23,7 @@
 #include <nlohmann/json.hpp>
 #include <zlib.h>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"

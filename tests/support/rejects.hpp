@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
 
 namespace tessim::testing {

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"
 #include "render/raster.hpp"

@@ -1,4 +1,4 @@
-#include "model/input_file.hpp"
+#include "model/base/input_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 
 namespace tessim {
 

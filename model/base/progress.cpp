@@ -1,4 +1,4 @@
-#include "model/progress.hpp"
+#include "model/base/progress.hpp"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "model/output_file.hpp"
+#include "model/base/output_file.hpp"
 
 #include <signal.h>
 #include <unistd.h>
@@ -14,7 +14,7 @@
 #include <string_view>
 #include <system_error>
 
-#include "model/error.hpp"
+#include "model/base/error.hpp"
 
 namespace tessim {
 
