@@ -19,6 +19,7 @@
 #include "model/base/error.hpp"
 #include "model/base/input_file.hpp"
 #include "sim/json_input.hpp"
+#include "sim/report.hpp"
 #include "sim/simulate.hpp"
 
 namespace tessim::app {

@@ -11,6 +11,7 @@
 #include "app/commands.hpp"
 #include "model/base/error.hpp"
 #include "sim/params.hpp"
+#include "sim/schema.hpp"
 
 namespace tessim::app {
 

@@ -26,6 +26,8 @@
 #include "model/weld.hpp"
 #include "sim/chunked.hpp"
 #include "sim/config.hpp"
+#include "sim/report.hpp"
+#include "sim/schedule.hpp"
 #include "sim/simulate.hpp"
 #include "sim/trace.hpp"
 

@@ -14,6 +14,7 @@
 #include "model/base/error.hpp"
 #include "sim/blocks/counter_registry.hpp"
 #include "sim/params.hpp"
+#include "sim/report.hpp"
 #include "sim/simulate.hpp"
 #include "sim/version.hpp"
 

@@ -12,8 +12,8 @@
 #include "model/base/error.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/dut.hpp"
 #include "sim/host.hpp"
+#include "sim/model_dut.hpp"
 #include "sim/reference_check.hpp"
 #include "sim/testbench.hpp"
 

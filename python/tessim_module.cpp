@@ -28,6 +28,8 @@
 #include "sim/config.hpp"
 #include "sim/host.hpp"
 #include "sim/params.hpp"
+#include "sim/report.hpp"
+#include "sim/schema.hpp"
 #include "sim/simulate.hpp"
 
 namespace py = pybind11;

@@ -1,13 +1,12 @@
 // The narrow boundary every implementation of the unit offers to a testbench and to the
 // co-simulation's checkers: outputs that are functions of registered state, one clock edge,
-// the performance counters. The cycle model (ModelDut over sim::Unit) and the Verilated RTL
-// (rtl::RtlUnit) implement it; docs/verification.md describes the checkers built on it.
-// Loops that run one implementation at full speed (tessim sim, benchmarks) drive sim::Unit
-// directly: the testbench is a template over any type with these members.
+// the performance counters. The cycle model (ModelDut over sim::Unit, sim/model_dut.hpp) and
+// the Verilated RTL (rtl::RtlUnit) implement it; docs/verification.md describes the checkers
+// built on it. Loops that run one implementation at full speed (tessim sim, benchmarks) drive
+// sim::Unit directly: the testbench is a template over any type with these members. Only the
+// unit's I/O types are needed here, so the RTL adapter does not pull in the cycle model.
 #pragma once
 
-#include "sim/blocks/counters.hpp"
-#include "sim/unit.hpp"
 #include "sim/unit_io.hpp"
 
 namespace tessim::sim {
@@ -22,22 +21,6 @@ class Dut {
   virtual bool cpg_computing() const = 0;      // gpe mapping: wants the GPE's spare cycle
   virtual UnitCounters counters() const = 0;   // docs/microarchitecture.md §10
   virtual void tick(const UnitInputs& in) = 0; // the clock edge
-};
-
-class ModelDut final : public Dut {
- public:
-  explicit ModelDut(const UnitConfig& cfg) : unit_(cfg) {}
-  void reset() override { unit_.reset(); }
-  bool tri_ready() const override { return unit_.tri_ready(); }
-  bool vtx_valid() const override { return unit_.vtx_valid(); }
-  VertexFx vtx() const override { return unit_.vtx(); }
-  bool cpg_computing() const override { return unit_.cpg_computing(); }
-  UnitCounters counters() const override { return unit_.stats(); }
-  void tick(const UnitInputs& in) override { unit_.tick(in); }
-  const Unit& unit() const { return unit_; }
-
- private:
-  Unit unit_;
 };
 
 }  // namespace tessim::sim

@@ -1,8 +1,8 @@
 // The parameters of the unit and its environment, described once: JSON key, command-line flag
 // and its aliases, RTL parameter, kind, type, range, default, unit, description, and an
 // accessor into sim::UnitConfig. apply_json, UnitConfig::validate, to_json, the flags of
-// `tessim sim` / `tessim cosim` and `tessim schema` (which the scripts read) all loop over
-// this table; README.md (Configuration files) lists it.
+// `tessim sim` / `tessim cosim` and `tessim schema` (sim/schema.hpp, which the scripts read)
+// all loop over this table; README.md (Configuration files) lists it.
 #pragma once
 
 #include <cstdint>
@@ -56,11 +56,5 @@ std::string range_text(const ParamSpec& p);
 std::vector<std::string> alias_list(const ParamSpec& p);
 // The CLI11 name string of the flag: "-L,--tess-factor", "--int-blocks,--int", ...
 std::string cli_names(const ParamSpec& p);
-
-// The whole description as JSON (what `tessim schema` prints): "parameters", "int_ops",
-// "statistics", "cpg_cycles", "cpg_cycles_by_variant", "rtl_parameters", "position_bound",
-// "interface" (tess_unit's ports, item widths and codes, sim/ports.hpp) and "rtl_builds"
-// (rtl/builds.json, sim/rtl_builds.hpp).
-nlohmann::json schema_json();
 
 }  // namespace tessim::sim

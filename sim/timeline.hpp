@@ -16,9 +16,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "sim/blocks/cpg.hpp"
-#include "sim/blocks/te.hpp"
-#include "sim/gpe.hpp"
+#include "sim/blocks/counter_registry.hpp"
 
 namespace tessim::sim {
 

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "model/base/output_file.hpp"
-#include "sim/simulate.hpp"
+#include "sim/hooks.hpp"
 
 namespace tessim::sim {
 

@@ -16,6 +16,7 @@
 #include "sim/config.hpp"
 #include "sim/params.hpp"
 #include "sim/rtl_builds.hpp"
+#include "sim/schema.hpp"
 #include "tests/support/param_values.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -22,6 +22,7 @@
 #include "model/mesh_io.hpp"
 #include "sim/blocks/counter_registry.hpp"
 #include "sim/config.hpp"
+#include "sim/report.hpp"
 #include "sim/simulate.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"

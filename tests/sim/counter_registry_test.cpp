@@ -16,6 +16,7 @@
 #include "model/mesh_io.hpp"
 #include "sim/blocks/counter_registry.hpp"
 #include "sim/config.hpp"
+#include "sim/report.hpp"
 #include "sim/simulate.hpp"
 #include "sim/unit_io.hpp"
 

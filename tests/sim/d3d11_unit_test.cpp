@@ -19,8 +19,8 @@
 #include "model/mesh_io.hpp"
 #include "sim/config.hpp"
 #include "sim/datapath.hpp"
-#include "sim/dut.hpp"
 #include "sim/host.hpp"
+#include "sim/model_dut.hpp"
 #include "sim/testbench.hpp"
 
 namespace tessim::sim {

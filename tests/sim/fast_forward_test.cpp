@@ -16,6 +16,7 @@
 #include "sim/config.hpp"
 #include "sim/gpe.hpp"
 #include "sim/host.hpp"
+#include "sim/report.hpp"
 #include "sim/simulate.hpp"
 #include "sim/testbench.hpp"
 #include "sim/unit.hpp"

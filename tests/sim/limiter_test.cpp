@@ -7,6 +7,7 @@
 
 #include "model/mesh_io.hpp"
 #include "sim/analytic.hpp"
+#include "sim/report.hpp"
 #include "sim/simulate.hpp"
 
 namespace tessim::sim {

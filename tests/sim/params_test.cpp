@@ -24,6 +24,8 @@
 #include "sim/error_bound.hpp"
 #include "sim/int_ops.hpp"
 #include "sim/params.hpp"
+#include "sim/report.hpp"
+#include "sim/schema.hpp"
 #include "sim/simulate.hpp"
 #include "tests/support/param_values.hpp"
 

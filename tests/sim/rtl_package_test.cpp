@@ -19,6 +19,7 @@
 #include "sim/params.hpp"
 #include "sim/ports.hpp"
 #include "sim/rtl_builds.hpp"
+#include "sim/schema.hpp"
 #include "sim/unit_io.hpp"
 
 namespace {

@@ -13,6 +13,7 @@
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "sim/config.hpp"
+#include "sim/report.hpp"
 #include "sim/simulate.hpp"
 #include "sim/timeline.hpp"
 

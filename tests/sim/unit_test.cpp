@@ -33,6 +33,7 @@
 #include "sim/datapath.hpp"
 #include "sim/gpe.hpp"
 #include "sim/host.hpp"
+#include "sim/report.hpp"
 #include "sim/simulate.hpp"
 #include "sim/trace.hpp"
 #include "sim/unit.hpp"

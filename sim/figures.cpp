@@ -1,0 +1,74 @@
+#include "sim/report.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+namespace tessim::sim {
+
+namespace {
+
+double ratio(std::uint64_t a, std::uint64_t b) { return b == 0 ? 0.0 : static_cast<double>(a) / b; }
+
+}  // namespace
+
+double throughput(const SimResult& r) { return ratio(r.unit.vertices_out, r.unit.cycles); }
+double cycles_per_vertex(const SimResult& r) { return ratio(r.unit.cycles, r.unit.vertices_out); }
+
+double int_utilisation(const SimResult& r) {
+  std::uint64_t busy = 0;
+  for (std::uint64_t b : r.unit.int_busy_used()) busy += b;
+  return ratio(busy, r.unit.cycles * static_cast<std::uint64_t>(r.unit.int_blocks));
+}
+
+std::string bottleneck(const SimResult& r) {
+  const std::uint64_t cycles = r.unit.cycles;
+  if (cycles == 0) return "none (empty run)";
+  const UnitConfig& c = r.config;
+  char buf[320];
+  // The GPE limits when it waited for a vertex no more often than the TE waited for it.
+  if (r.gpe_waited <= r.unit.te[TeClass::BlockedByGpe]) {
+    std::snprintf(buf, sizeof buf,
+                  "GPE: waited for a vertex %.1f%% of cycles, TE blocked by GPE %.1f%% "
+                  "(one vertex / %d cycles, busy %.1f%%)",
+                  100 * ratio(r.gpe_waited, cycles), 100 * ratio(r.unit.te[TeClass::BlockedByGpe], cycles),
+                  c.gpe_cycles, 100 * ratio(r.gpe[GpeClass::Busy], cycles));
+    return buf;
+  }
+  // Otherwise the unit delivered vertices late: the stall class of the TE that dominates the late
+  // vertex intervals.
+  const ClassCounts<TeClass>& w = r.te_late;
+  const double waited = static_cast<double>(w.total());
+  const std::uint64_t context_limited = w[TeClass::ContextLimited], int_limited = w[TeClass::IntLimited],
+                      starved_by_cpg = w[TeClass::StarvedByCpg];
+  const std::uint64_t top = std::max({context_limited, int_limited, starved_by_cpg});
+  if (top == 0) {
+    std::snprintf(buf, sizeof buf,
+                  "none dominant: GPE waited %.1f%% of cycles, no TE stall class in the late vertex "
+                  "intervals (busy %.1f%%, pipeline %.1f%%)",
+                  100 * ratio(r.gpe_waited, cycles), 100 * w[TeClass::Busy] / waited,
+                  100 * w[TeClass::Pipeline] / waited);
+  } else if (starved_by_cpg == top) {
+    std::snprintf(buf, sizeof buf,
+                  "CPG: TE starved by CPG in %.1f%% of the late vertex intervals (GPE waited %.1f%% of cycles; "
+                  "%s mapping, C = %d cycles per triangle, %.4g vertices per patch)",
+                  100 * starved_by_cpg / waited, 100 * ratio(r.gpe_waited, cycles),
+                  to_string(c.cpg_mapping).c_str(), r.cpg_cycles, ratio(r.factors.vertices, r.triangles));
+  } else if (int_limited == top) {
+    std::snprintf(buf, sizeof buf,
+                  "INT blocks: all %d busy with ready ops left in %.1f%% of the late vertex intervals "
+                  "(GPE waited %.1f%% of cycles; utilisation %.1f%%, %.2f cycles/vertex at best)",
+                  c.int_blocks, 100 * int_limited / waited, 100 * ratio(r.gpe_waited, cycles),
+                  100 * int_utilisation(r), (c.normals == NormalMode::Linear ? 11.0 : 14.0) / c.int_blocks);
+  } else {
+    std::snprintf(buf, sizeof buf,
+                  "TE contexts: oldest vertex waiting on its dependence chain in %.1f%% of the late vertex "
+                  "intervals (GPE waited %.1f%% of cycles; %d contexts, INT latency %d, INT utilisation %.1f%%)",
+                  100 * context_limited / waited, 100 * ratio(r.gpe_waited, cycles), c.te_contexts,
+                  c.int_latency, 100 * int_utilisation(r));
+  }
+  return buf;
+}
+
+}  // namespace tessim::sim
