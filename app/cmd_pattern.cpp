@@ -51,9 +51,9 @@ Plane to_plane(double u, double v) { return {u + 0.5 * v, 0.5 * std::sqrt(3.0) *
 
 // The picture of the pattern, for SVG and PNG alike (render/canvas.hpp): the domain's triangles,
 // its boundary, the points, the corners, the edge each outer factor subdivides, and a caption.
-Drawing pattern_drawing(const D3D11Pattern& p, Partitioning partitioning) {
+render::Drawing pattern_drawing(const D3D11Pattern& p, Partitioning partitioning) {
   constexpr double kSide = 680.0, kMargin = 60.0;
-  Drawing d;
+  render::Drawing d;
   d.width = kSide + 2 * kMargin;
   d.height = 0.5 * std::sqrt(3.0) * kSide + 2 * kMargin + 30.0;
   auto at = [&](double u, double v) {
@@ -71,7 +71,7 @@ Drawing pattern_drawing(const D3D11Pattern& p, Partitioning partitioning) {
                   p.triangle_count());
   d.texts.push_back({{kMargin, 28.0}, title, ink});
   for (std::size_t t = 0; t < p.triangle_count(); ++t) {
-    Drawing::Polygon triangle;
+    render::Drawing::Polygon triangle;
     for (int c = 0; c < 3; ++c) {
       const FixedUV q = p.points[p.indices[3 * t + c]];
       triangle.points.push_back(at(fixed16_to_double(q.u), fixed16_to_double(q.v)));
@@ -104,16 +104,16 @@ Drawing pattern_drawing(const D3D11Pattern& p, Partitioning partitioning) {
   return d;
 }
 
-void write_svg(const Drawing& drawing, const std::filesystem::path& path) {
+void write_svg(const render::Drawing& drawing, const std::filesystem::path& path) {
   AtomicOutput out(path);
-  out.stream() << to_svg(drawing);
+  out.stream() << render::to_svg(drawing);
   out.commit();
 }
 
 // PNG: the same drawing rasterized, scaled to fit --size.
-void write_png(const Drawing& drawing, const std::filesystem::path& path, const std::string& size_text) {
+void write_png(const render::Drawing& drawing, const std::filesystem::path& path, const std::string& size_text) {
   const glm::ivec2 size = parse_image_size(size_text, "--size");
-  write_image(rasterize(drawing, size.x, size.y), path);
+  render::write_image(render::rasterize(drawing, size.x, size.y), path);
 }
 
 void print_text(const D3D11Pattern& p, Partitioning partitioning, Winding winding, std::FILE* out) {

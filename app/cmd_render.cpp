@@ -54,8 +54,8 @@ struct RenderArgs {
   bool view_given = false;  // --azimuth or --elevation: else the best side is chosen
   bool wireframe = false;
   std::string size = "1024x768";
-  double azimuth = ViewAngles{}.azimuth_deg;
-  double elevation = ViewAngles{}.elevation_deg;
+  double azimuth = render::ViewAngles{}.azimuth_deg;
+  double elevation = render::ViewAngles{}.elevation_deg;
   std::string up = "y";
   bool no_supersample = false;
   std::string output;
@@ -72,8 +72,8 @@ glm::dvec3 factor_colour(double t) {
 }
 
 // The input mesh with one face normal per triangle: the faceted look of the coarse mesh.
-RenderMesh flat_shaded(const Mesh& mesh) {
-  RenderMesh out;
+render::RenderMesh flat_shaded(const Mesh& mesh) {
+  render::RenderMesh out;
   out.positions.reserve(mesh.triangles.size() * 3);
   out.normals.reserve(mesh.triangles.size() * 3);
   out.triangles.reserve(mesh.triangles.size());
@@ -101,7 +101,7 @@ using PatchWireColour = std::function<glm::dvec3(const PatchView&)>;
 // that the wireframe shows the input triangles darker than the refinement inside them; with
 // `scalars`, each vertex also gets its value, with `wire_colour` each triangle its wire colour.
 // `done` (progress) counts the vertices tessellated.
-RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const TessellationCounts& counts,
+render::RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const TessellationCounts& counts,
                           NormalMode mode, std::atomic<std::uint64_t>* done, const PatchScalars& scalars = {},
                           const PatchWireColour& wire_colour = {}) {
   // An edge of the pattern lies on the patch boundary when both ends are on one side of the
@@ -111,7 +111,7 @@ RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings, const 
     return (p.x == 0.0 && q.x == 0.0) || (p.y == 0.0 && q.y == 0.0) ||
            (std::abs(p.x + p.y - 1.0) < eps && std::abs(q.x + q.y - 1.0) < eps);
   };
-  RenderMesh out;
+  render::RenderMesh out;
   out.positions.reserve(counts.vertices);
   out.normals.reserve(counts.vertices);
   out.triangles.reserve(counts.triangles);
@@ -247,17 +247,17 @@ void run_render(const RenderArgs& args) {
   if (!args.config.empty() && !is_error_mode(colour))
     throw InputError("command line", "--config", "only the error colour modes use the unit's configuration");
   const sim::UnitConfig cfg = is_error_mode(colour) ? unit_config(args.config, mode) : sim::UnitConfig{};
-  ViewAngles view;
+  render::ViewAngles view;
   view.azimuth_deg = args.azimuth;
   view.elevation_deg = args.elevation;
-  if (args.up == "y" || args.up == "Y") view.up = UpAxis::Y;
-  else if (args.up == "z" || args.up == "Z") view.up = UpAxis::Z;
+  if (args.up == "y" || args.up == "Y") view.up = render::UpAxis::Y;
+  else if (args.up == "z" || args.up == "Z") view.up = render::UpAxis::Z;
   else throw InputError("command line", "--up", "'" + args.up + "' is not one of y, z");
   if (!std::isfinite(view.azimuth_deg)) throw InputError("command line", "--azimuth", "not a finite angle");
   if (!std::isfinite(view.elevation_deg) || std::abs(view.elevation_deg) > 90.0)
     throw InputError("command line", "--elevation", "must be within -90..90 degrees");
   const std::filesystem::path output = args.output;
-  if (!is_supported_image(output))
+  if (!render::is_supported_image(output))
     throw InputError(output.string(), "output",
                      "unsupported image format '" + output.extension().string() + "' (use .png or .exr)");
 
@@ -298,7 +298,7 @@ void run_render(const RenderArgs& args) {
 
   // Adaptive factors in the wireframe: each patch's edges coloured by its factor (the inner one,
   // the largest of its edges), so that the density gradient shows, with a colour bar.
-  ColourScale factor_scale;
+  render::ColourScale factor_scale;
   PatchWireColour wire_colour;
   const bool factor_wires = args.wireframe && settings.kind == PatternKind::D3D11 &&
                             settings.source == FactorSource::Adaptive;
@@ -320,7 +320,7 @@ void run_render(const RenderArgs& args) {
   const std::string surface = tagged ? "STPN" : "PN";
   ProgressDisplay tessellation_progress("render: tessellate", "vertices",
                                         counts.vertices * (1 + static_cast<std::uint64_t>(compare.pn)), args.quiet);
-  std::vector<RenderMesh> panels;
+  std::vector<render::RenderMesh> panels;
   std::vector<std::string> labels;
   if (compare.flat) {
     panels.push_back(flat_shaded(mesh));
@@ -337,38 +337,38 @@ void run_render(const RenderArgs& args) {
   // One camera for all panels, framed on everything drawn (the PN surface bulges beyond the
   // input vertices).
   std::vector<glm::dvec3> all_points;
-  for (const RenderMesh& panel : panels) {
-    validate(panel, mesh_name);
+  for (const render::RenderMesh& panel : panels) {
+    render::validate(panel, mesh_name);
     all_points.insert(all_points.end(), panel.positions.begin(), panel.positions.end());
   }
   // Adaptive factors are chosen for a camera: the picture is taken from it, so that what is near
   // (fine) and what is far (coarse) can be seen as the factors saw them.
-  Camera camera;
+  render::Camera camera;
   bool chosen_view = false;
   if (settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive) {
     camera.eye = settings.camera.eye;
     camera.target = settings.camera.target;
-    camera.up = view.up == UpAxis::Y ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    camera.up = view.up == render::UpAxis::Y ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
     if (glm::length(glm::cross(camera.up, camera.target - camera.eye)) == 0.0) camera.up = glm::dvec3(1, 0, 0);
     camera.fov_y_deg = settings.camera.fov_deg;
     camera.aspect = static_cast<double>(size.x) / size.y;
   } else {
     if (!args.view_given) {
-      view = best_view(compare.flat ? panels.front() : flat_shaded(mesh), view.up);
+      view = render::best_view(compare.flat ? panels.front() : flat_shaded(mesh), view.up);
       chosen_view = true;
     }
-    camera = frame_camera(all_points, view, size.x, size.y);
+    camera = render::frame_camera(all_points, view, size.x, size.y);
   }
   all_points = {};
 
-  RenderOptions options;
+  render::RenderOptions options;
   options.width = size.x;
   options.height = size.y;
   options.wireframe = args.wireframe;
   options.supersample = !args.no_supersample;
 
   // The heat map's scale: from 0 to the largest value, or to --color-max.
-  ColourScale scale;
+  render::ColourScale scale;
   const bool heat = colour != ColourMode::Shaded;
   double largest = 0.0;
   if (heat) {
@@ -390,14 +390,16 @@ void run_render(const RenderArgs& args) {
   }
 
   // Only the main panel (last) carries scalars: the others are shaded plainly.
-  std::vector<std::unique_ptr<Renderer>> renderers;
-  for (const RenderMesh& panel : panels) renderers.push_back(std::make_unique<Renderer>(panel, camera, options));
-  const int total_width = static_cast<int>(panel_count) * size.x + static_cast<int>(panel_count - 1) * kSeparatorWidth;
+  std::vector<std::unique_ptr<render::Renderer>> renderers;
+  for (const render::RenderMesh& panel : panels)
+    renderers.push_back(std::make_unique<render::Renderer>(panel, camera, options));
+  const int total_width =
+      static_cast<int>(panel_count) * size.x + static_cast<int>(panel_count - 1) * render::kSeparatorWidth;
   const glm::dvec3 separator = options.background * 0.8;
   const int text_scale = size.x >= 1400 ? 2 : 1;
 
   // Caption: what was drawn, then one label per panel.
-  std::vector<CaptionLine> caption;
+  std::vector<render::CaptionLine> caption;
   if (!args.no_caption) {
     std::string header = args.caption;
     if (header.empty()) {
@@ -408,34 +410,36 @@ void run_render(const RenderArgs& args) {
     }
     caption.push_back({{header}, {0}, {total_width}});
     if (panel_count > 1 || heat) {
-      CaptionLine line;
+      render::CaptionLine line;
       for (std::size_t i = 0; i < panels.size(); ++i) {
         std::string label = labels[i];
         if (i + 1 == panels.size() && heat) label += " (colour: " + args.color + ")";
         line.cells.push_back(label);
-        line.x.push_back(static_cast<int>(i) * (size.x + kSeparatorWidth));
+        line.x.push_back(static_cast<int>(i) * (size.x + render::kSeparatorWidth));
         line.width.push_back(size.x);
       }
       caption.push_back(line);
     }
   }
-  const Image caption_image = caption.empty() ? Image() : caption_strip(caption, total_width, options.background, text_scale);
-  Image bar_image = heat ? colour_bar_strip(scale, total_width, options.background, text_scale) : Image();
+  const render::Image caption_image =
+      caption.empty() ? render::Image() : render::caption_strip(caption, total_width, options.background, text_scale);
+  render::Image bar_image =
+      heat ? render::colour_bar_strip(scale, total_width, options.background, text_scale) : render::Image();
   if (factor_wires) {
-    const Image factor_bar = colour_bar_strip(factor_scale, total_width, options.background, text_scale,
-                                              factor_colour);
-    bar_image = heat ? stack(bar_image, factor_bar) : factor_bar;
+    const render::Image factor_bar =
+        render::colour_bar_strip(factor_scale, total_width, options.background, text_scale, factor_colour);
+    bar_image = heat ? render::stack(bar_image, factor_bar) : factor_bar;
   }
 
-  ImageFileWriter writer(output, total_width, caption_image.height + size.y + bar_image.height);
+  render::ImageFileWriter writer(output, total_width, caption_image.height + size.y + bar_image.height);
   if (caption_image.height > 0) writer.write_rows(caption_image);
   constexpr int kRowsPerWrite = 64;
   ProgressDisplay raster_progress("render: raster", "rows", static_cast<std::uint64_t>(size.y), args.quiet);
   for (int y = 0; y < size.y; y += kRowsPerWrite) {
     const int y_end = std::min(size.y, y + kRowsPerWrite);
-    Image band = renderers.front()->render_rows(y, y_end);
+    render::Image band = renderers.front()->render_rows(y, y_end);
     for (std::size_t i = 1; i < renderers.size(); ++i)
-      band = side_by_side(band, renderers[i]->render_rows(y, y_end), separator);
+      band = render::side_by_side(band, renderers[i]->render_rows(y, y_end), separator);
     writer.write_rows(band);
     if (raster_progress.counter()) raster_progress.counter()->fetch_add(static_cast<std::uint64_t>(y_end - y));
   }

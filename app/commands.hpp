@@ -7,10 +7,12 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
 
 #include "model/base/error.hpp"
 
@@ -33,6 +35,9 @@ float parse_factor(const char* command, const char* option, const std::string& t
 // "e0,e1,e2": the three outer factors (edges u = 0, v = 0, w = 0).
 std::array<float, 3> parse_outer_factors(const char* command, const std::string& text);
 Partitioning parse_partitioning_option(const char* command, const std::string& text);
+// An image size option, "WxH" (decimal, 1..render::kMaxImageSide each). Throws InputError
+// naming the command line and `option`.
+glm::ivec2 parse_image_size(std::string_view text, std::string_view option);
 
 // The pattern options of the reference commands (tessellate, render; docs/patterns.md):
 //   -L N                                  uniform pattern (the unit's own), the default

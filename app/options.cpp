@@ -325,4 +325,23 @@ std::optional<TessSettings> UnitPatternOptions::settings(const char* command, in
   return p.settings(command);
 }
 
+glm::ivec2 parse_image_size(std::string_view text, std::string_view option) {
+  const std::string name(option);
+  const std::string expected = "expected WxH with W and H in 1.." + std::to_string(render::kMaxImageSide) +
+                               ", got '" + std::string(text) + "'";
+  const std::size_t sep = text.find_first_of("xX");
+  if (sep == std::string_view::npos) throw InputError("command line", name, expected);
+  auto number = [&](std::string_view digits) {
+    if (digits.empty() || digits.size() > 5) throw InputError("command line", name, expected);
+    int value = 0;
+    for (char c : digits) {
+      if (c < '0' || c > '9') throw InputError("command line", name, expected);
+      value = value * 10 + (c - '0');
+    }
+    if (value < 1 || value > render::kMaxImageSide) throw InputError("command line", name, expected);
+    return value;
+  };
+  return {number(text.substr(0, sep)), number(text.substr(sep + 1))};
+}
+
 }  // namespace tessim::app

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-namespace tessim::app {
+namespace tessim::render {
 
 namespace {
 
@@ -184,4 +184,4 @@ Image caption_strip(const std::vector<CaptionLine>& lines, int width, const glm:
   return strip;
 }
 
-}  // namespace tessim::app
+}  // namespace tessim::render

@@ -11,7 +11,7 @@
 
 #include "render/raster.hpp"
 
-namespace tessim::app {
+namespace tessim::render {
 
 // Pixel size of one line of text at an integer scale (1: 8x16-pixel characters).
 int text_width(std::string_view text, int scale = 1);
@@ -64,4 +64,4 @@ std::vector<double> nice_ticks(double lo, double hi, int max_ticks = 6);
 // A tick label: three significant digits, exponent form for very small or large magnitudes.
 std::string format_tick(double value);
 
-}  // namespace tessim::app
+}  // namespace tessim::render

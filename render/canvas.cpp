@@ -7,7 +7,7 @@
 
 #include "render/annotate.hpp"
 
-namespace tessim::app {
+namespace tessim::render {
 
 namespace {
 
@@ -169,4 +169,4 @@ Image rasterize(const Drawing& d, int width, int height) {
   return image;
 }
 
-}  // namespace tessim::app
+}  // namespace tessim::render

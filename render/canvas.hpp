@@ -12,7 +12,7 @@
 
 #include "render/raster.hpp"
 
-namespace tessim::app {
+namespace tessim::render {
 
 // Colours as in SVG: sRGB components in [0, 1].
 struct Drawing {
@@ -52,4 +52,4 @@ std::string to_svg(const Drawing& drawing);
 // the drawing's font size.
 Image rasterize(const Drawing& drawing, int width, int height);
 
-}  // namespace tessim::app
+}  // namespace tessim::render

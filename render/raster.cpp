@@ -12,7 +12,7 @@
 #include "render/annotate.hpp"
 #include "render/imageio/imageio_loader.hpp"
 
-namespace tessim::app {
+namespace tessim::render {
 
 namespace {
 
@@ -420,25 +420,6 @@ Image side_by_side(const Image& left, const Image& right, const glm::dvec3& sepa
   return out;
 }
 
-glm::ivec2 parse_image_size(std::string_view text, std::string_view option) {
-  const std::string name(option);
-  const std::string expected = "expected WxH with W and H in 1.." + std::to_string(kMaxImageSide) +
-                               ", got '" + std::string(text) + "'";
-  const std::size_t sep = text.find_first_of("xX");
-  if (sep == std::string_view::npos) throw InputError("command line", name, expected);
-  auto number = [&](std::string_view digits) {
-    if (digits.empty() || digits.size() > 5) throw InputError("command line", name, expected);
-    int value = 0;
-    for (char c : digits) {
-      if (c < '0' || c > '9') throw InputError("command line", name, expected);
-      value = value * 10 + (c - '0');
-    }
-    if (value < 1 || value > kMaxImageSide) throw InputError("command line", name, expected);
-    return value;
-  };
-  return {number(text.substr(0, sep)), number(text.substr(sep + 1))};
-}
-
 bool is_supported_image(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);
   // Standard output, a device or a pipe needs no extension: it gets PNG.
@@ -517,4 +498,4 @@ void write_image(const Image& image, const std::filesystem::path& path) {
   writer.finish();
 }
 
-}  // namespace tessim::app
+}  // namespace tessim::render

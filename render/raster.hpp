@@ -14,7 +14,7 @@
 
 #include <glm/glm.hpp>
 
-namespace tessim::app {
+namespace tessim::render {
 
 // Triangles to draw: one normal per position (need not be unit length). Winding may be
 // inconsistent. edge_flags is optional (empty: every edge is a primary edge); bit e of
@@ -135,9 +135,6 @@ Image render(const RenderMesh& mesh, const Camera& camera, const RenderOptions& 
 constexpr int kSeparatorWidth = 6;
 Image side_by_side(const Image& left, const Image& right, const glm::dvec3& separator_colour);
 
-// "WxH" (decimal, 1..kMaxImageSide each). Throws InputError naming `option`.
-glm::ivec2 parse_image_size(std::string_view text, std::string_view option = "--size");
-
 // True for .png and .exr (any case): the formats write_image and ImageFileWriter accept; and for
 // outputs written directly (standard output "-", a device, a pipe), which get PNG.
 bool is_supported_image(const std::filesystem::path& path);
@@ -162,4 +159,4 @@ class ImageFileWriter {
 
 void write_image(const Image& image, const std::filesystem::path& path);
 
-}  // namespace tessim::app
+}  // namespace tessim::render

@@ -9,7 +9,7 @@
 
 #include "model/base/error.hpp"
 
-namespace tessim::app {
+namespace tessim::render {
 
 namespace {
 
@@ -67,4 +67,4 @@ const ImageIoPlugin& image_io_plugin(const std::filesystem::path& output) {
   return loaded.plugin;
 }
 
-}  // namespace tessim::app
+}  // namespace tessim::render

@@ -7,7 +7,7 @@
 
 #include "render/imageio/imageio_plugin.h"
 
-namespace tessim::app {
+namespace tessim::render {
 
 struct ImageIoPlugin {
   decltype(&tessim_image_open) open = nullptr;
@@ -23,4 +23,4 @@ const ImageIoPlugin& image_io_plugin(const std::filesystem::path& output);
 // Where the plugin is looked up (for messages and tests).
 std::filesystem::path image_io_plugin_path();
 
-}  // namespace tessim::app
+}  // namespace tessim::render

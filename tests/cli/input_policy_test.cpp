@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "app/commands.hpp"
+#include "model/base/error.hpp"
 #include "tests/support/input_error.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -56,6 +58,16 @@ std::string tagged_tetrahedron(const std::string& dz) {
 
 // ---------------------------------------------------------------------------------------------
 // A crash: nlohmann's dump() overflows its buffer for an indent in the thousands.
+
+// The image size options (render --size and --viewport, pattern --size) of app/options.cpp.
+TEST(BadInputImageSize, WxHWithinTheImageLimit) {
+  EXPECT_EQ(app::parse_image_size("1x1", "--size"), glm::ivec2(1, 1));
+  EXPECT_EQ(app::parse_image_size("640X480", "--size"), glm::ivec2(640, 480));
+  EXPECT_EQ(app::parse_image_size("8192x8192", "--size"), glm::ivec2(8192, 8192));
+  for (const char* bad : {"", "x", "0x10", "10x0", "8193x10", "10x8193", "10", "axb", "10x10x10", "-5x5",
+                          "10 x 10", "99999999999x1", "1.5x2"})
+    EXPECT_THROW(app::parse_image_size(bad, "--size"), InputError) << "'" << bad << "'";
+}
 
 TEST(BadInputSchema, IndentIsBounded) {
   TempDir scratch;

@@ -52,11 +52,11 @@ TEST(CaptionWrap, RenderAtANarrowWidthShowsTheWholeCaption) {
   ASSERT_EQ(r.status, 0) << r.err;
   const ReadBack image = read_back(png);
   ASSERT_EQ(image.width, 320);
-  const int lines = static_cast<int>(wrap_text(kLongCaption, 320 - 8).size());
+  const int lines = static_cast<int>(render::wrap_text(kLongCaption, 320 - 8).size());
   // Caption strip: padding, one text row per wrapped line, padding; then the picture.
-  EXPECT_EQ(image.height, 200 + 4 + lines * text_line_height() + 4);
-  const int last_row = 4 + (lines - 1) * text_line_height();
-  EXPECT_GT(dark_pixels(image, last_row, last_row + text_line_height()), 20) << "the last caption line is drawn";
+  EXPECT_EQ(image.height, 200 + 4 + lines * render::text_line_height() + 4);
+  const int last_row = 4 + (lines - 1) * render::text_line_height();
+  EXPECT_GT(dark_pixels(image, last_row, last_row + render::text_line_height()), 20) << "the last caption line is drawn";
 }
 
 TEST(PatternPicture, PngShowsThePointsLabelsAndCaptionOfTheSvg) {

@@ -20,7 +20,7 @@
 #include "tests/support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
-using namespace tessim::app;
+using namespace tessim::render;
 using tessim::testing::read_back;
 using tessim::testing::ReadBack;
 using tessim::testing::run_tessim;

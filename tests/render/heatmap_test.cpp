@@ -12,7 +12,7 @@
 #include "render/annotate.hpp"
 #include "render/raster.hpp"
 
-using namespace tessim::app;
+using namespace tessim::render;
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "render/annotate.hpp"
 #include "render/canvas.hpp"
 
-namespace tessim::app {
+namespace tessim::render {
 namespace {
 
 const std::string kLongCaption =
@@ -73,4 +73,4 @@ TEST(PatternPicture, SvgAndRasterComeFromOneDrawing) {
 }
 
 }  // namespace
-}  // namespace tessim::app
+}  // namespace tessim::render

@@ -39,10 +39,10 @@ int main(int argc, char** argv) {
 
     if (argc == 5) {
       setenv("TESSIM_IMAGEIO_PLUGIN", TESSIM_IMAGEIO_PLUGIN_PATH, 0);
-      tessim::app::Image image(8, 8);
+      tessim::render::Image image(8, 8);
       for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) image.pixel(x, y)[0] = static_cast<float>(x) / image.width;
-      tessim::app::write_image(image, argv[4]);
+      tessim::render::write_image(image, argv[4]);
       std::printf("image %s\n", argv[4]);
     }
   } catch (const tessim::InputError& e) {
