@@ -115,12 +115,17 @@ SimResult simulate_chunked(const Mesh& mesh, const UnitConfig& cfg, int chunks, 
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<std::uint64_t> starts = chunk_starts(mesh.triangle_count(), chunks);
   const auto k_chunks = static_cast<std::size_t>(chunks);
-  std::atomic<bool> cancel{false};
+  // A failing chunk stops only the chunks after it: one before it may still hold the error a
+  // single run would report (the first in stream order).
+  std::vector<std::atomic<bool>> cancel(k_chunks);
+  const auto cancel_after = [&](std::size_t failed) {
+    for (std::size_t k = failed + 1; k < k_chunks; ++k) cancel[k] = true;
+  };
   std::vector<SimHooks> hooks(k_chunks);
   for (std::size_t k = 0; k < k_chunks; ++k) {
     if (callbacks.hooks) hooks[k] = callbacks.hooks(static_cast<int>(k));
     if (!hooks[k].observers.empty()) throw std::logic_error("simulate_chunked: observers watch one run");
-    hooks[k].cancel = &cancel;
+    hooks[k].cancel = &cancel[k];
   }
 
   std::vector<std::optional<SimResult>> results(k_chunks);
@@ -132,12 +137,12 @@ SimResult simulate_chunked(const Mesh& mesh, const UnitConfig& cfg, int chunks, 
   auto work = [&] {
     for (std::size_t k; (k = next.fetch_add(1)) < k_chunks;) {
       try {
-        if (cancel.load()) throw SimCancelled();
+        if (cancel[k].load()) throw SimCancelled();
         results[k] = simulate_range(mesh, chunk_config(cfg, static_cast<int>(k)), starts[k], starts[k + 1], hooks[k],
                                     patterns);
       } catch (...) {
         errors[k] = std::current_exception();
-        cancel = true;
+        cancel_after(k);
       }
       {
         const std::lock_guard lock(mutex);
@@ -164,13 +169,14 @@ SimResult simulate_chunked(const Mesh& mesh, const UnitConfig& cfg, int chunks, 
         if (callbacks.done) callbacks.done(static_cast<int>(k));
       } catch (...) {
         failure = std::current_exception();
-        cancel = true;
+        for (std::atomic<bool>& c : cancel) c = true;
       }
     }
-    if (!failure && std::any_of(errors.begin(), errors.end(), [](const auto& e) { return e != nullptr; }))
-      cancel = true;
+    if (!failure)
+      for (std::size_t k = 0; k < k_chunks; ++k)
+        if (errors[k]) cancel_after(k);
   }  // joins the workers
-  // A chunk's own error before one that only stopped because of another chunk's.
+  // The first chunk's own error in stream order (a cancelled chunk comes after a failed one).
   for (const std::exception_ptr& e : errors) {
     if (!e) continue;
     try {
