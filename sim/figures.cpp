@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include "sim/int_ops.hpp"
+
 namespace tessim::sim {
 
 namespace {
@@ -40,9 +42,9 @@ std::string bottleneck(const SimResult& r) {
   // vertex intervals.
   const ClassCounts<TeClass>& w = r.te_late;
   const double waited = static_cast<double>(w.total());
-  const std::uint64_t context_limited = w[TeClass::ContextLimited], int_limited = w[TeClass::IntLimited],
+  const std::uint64_t chain_waits = w[TeClass::ContextLimited], int_limited = w[TeClass::IntLimited],
                       starved_by_cpg = w[TeClass::StarvedByCpg];
-  const std::uint64_t top = std::max({context_limited, int_limited, starved_by_cpg});
+  const std::uint64_t top = std::max({chain_waits, int_limited, starved_by_cpg});
   if (top == 0) {
     std::snprintf(buf, sizeof buf,
                   "none dominant: GPE waited %.1f%% of cycles, no TE stall class in the late vertex "
@@ -60,12 +62,12 @@ std::string bottleneck(const SimResult& r) {
                   "INT blocks: all %d busy with ready ops left in %.1f%% of the late vertex intervals "
                   "(GPE waited %.1f%% of cycles; utilisation %.1f%%, %.2f cycles/vertex at best)",
                   c.int_blocks, 100 * int_limited / waited, 100 * ratio(r.gpe_waited, cycles),
-                  100 * int_utilisation(r), (c.normals == NormalMode::Linear ? 11.0 : 14.0) / c.int_blocks);
+                  100 * int_utilisation(r), static_cast<double>(int_ops::ops_per_vertex(c.normals)) / c.int_blocks);
   } else {
     std::snprintf(buf, sizeof buf,
                   "TE contexts: oldest vertex waiting on its dependence chain in %.1f%% of the late vertex "
                   "intervals (GPE waited %.1f%% of cycles; %d contexts, INT latency %d, INT utilisation %.1f%%)",
-                  100 * context_limited / waited, 100 * ratio(r.gpe_waited, cycles), c.te_contexts,
+                  100 * chain_waits / waited, 100 * ratio(r.gpe_waited, cycles), c.te_contexts,
                   c.int_latency, 100 * int_utilisation(r));
   }
   return buf;
