@@ -108,6 +108,7 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   const int cpg_step = clog2(static_cast<std::uint64_t>(sim::cpg_edge_cycles(NormalMode::Quadratic, hw.format, hw.cpg.digit_bits)));
   const int te_count = clog2(static_cast<std::uint64_t>(V) + 1);
   const int te_index = V > 1 ? clog2(static_cast<std::uint64_t>(V)) : 1;
+  const int buf_index = hw.cp_buffers > 1 ? clog2(static_cast<std::uint64_t>(hw.cp_buffers)) : 1;
 
   std::ostringstream o;
   // Relative names: gtkwave finds a relative dump file beside the save file it opens, so the
@@ -158,10 +159,11 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   dec(unit + "u_cpg.step_q", cpg_step);
   bit(unit + "u_cpg.write");
   group("control-point buffers (0 EMPTY, 1 FULL, 2 DRAINING)");
-  dec(unit + "u_cpbuf.state_q[0]", 2);
-  dec(unit + "u_cpbuf.state_q[1]", 2);
-  bit(unit + "u_cpbuf.wr_ptr_q");
-  bit(unit + "u_cpbuf.rd_ptr_q");
+  for (int b = 0; b < hw.cp_buffers; ++b) dec(unit + "u_cpbuf.state_q[" + std::to_string(b) + "]", 2);
+  // The pointers are vectors even when one bit wide: the dump names them with their range.
+  const std::string ptr_range = "[" + std::to_string(buf_index - 1) + ":0]";
+  o << "@24\n" << unit << "u_cpbuf.wr_ptr_q" << ptr_range << "\n";
+  o << "@24\n" << unit << "u_cpbuf.rd_ptr_q" << ptr_range << "\n";
   group("DPG (D3D11 walk: ring, edge, position)");
   dec(unit + "u_te.u_dpg.index_q", sim::pkg::kIndexBits);
   dec(unit + "u_te.u_dpg.ring_q", 6);

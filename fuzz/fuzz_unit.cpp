@@ -81,6 +81,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   cfg.gpe_cycles = in.ConsumeIntegralInRange(1, 12);
   cfg.tri_fifo_depth = in.ConsumeIntegralInRange(1, 4);
   cfg.vtx_fifo_depth = in.ConsumeIntegralInRange(1, 4);
+  cfg.cp_buffers = in.ConsumeIntegralInRange(1, 4);
   cfg.cpg_mapping = in.ConsumeBool() ? CpgMapping::Gpe : CpgMapping::Dedicated;
   cfg.cpg_gpe_cycles = in.ConsumeIntegralInRange(1, 80);
   static constexpr NormalMode kModes[] = {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear};

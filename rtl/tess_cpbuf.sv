@@ -1,11 +1,14 @@
-// The two control-point buffers (docs/microarchitecture.md §6): EMPTY -> FULL by the CPG
-// write, FULL -> DRAINING when the DPG hands out the patch's last domain point,
-// DRAINING -> EMPTY when the patch's last vertex retires. wr_ptr and rd_ptr alternate.
+// The control-point buffers (docs/microarchitecture.md §6), Buffers of them in a ring:
+// EMPTY -> FULL by the CPG write, FULL -> DRAINING when the DPG hands out the patch's last
+// domain point, DRAINING -> EMPTY when the patch's last vertex retires. wr_ptr and rd_ptr step
+// round the ring, so patches are written, drained and released in order.
 `ifndef TESS_ASSERT_SVH
 `include "tess_assert.svh"
 `endif
 module tess_cpbuf #(
-  parameter int unsigned CoordWidth = 24
+  parameter int unsigned CoordWidth = 24,
+  parameter int unsigned Buffers    = tess_pkg::CpBuffers,
+  localparam int unsigned PtrW      = (Buffers > 1) ? $clog2(Buffers) : 1
 ) (
   input  logic                            clk_i,
   input  logic                            rst_ni,
@@ -19,26 +22,26 @@ module tess_cpbuf #(
   input  logic [tess_pkg::FlagBits-1:0]   wr_flags_i,
   // DPG side: buffer[rd_ptr]
   output logic                            rd_full_o,
-  output logic                            rd_ptr_o,
+  output logic [PtrW-1:0]                 rd_ptr_o,
   output logic [tess_pkg::PatchBits-1:0]  rd_patch_o,
   output logic [tess_pkg::IdBits-1:0]     rd_id_o,
   output logic [tess_pkg::FlagBits-1:0]   rd_flags_o,
   input  logic                            drain_i,     // last domain point handed out
   // Retirement of a patch's last vertex
   input  logic                            release_i,
-  input  logic                            release_buf_i,
-  // Contents of both buffers, for the INT operand reads
-  output logic [2*30*CoordWidth-1:0]      b_o,
-  output logic [2*18*CoordWidth-1:0]      n_o
+  input  logic [PtrW-1:0]                 release_buf_i,
+  // Contents of every buffer, for the INT operand reads: buffer b at [b 30W +: 30W]
+  output logic [Buffers*30*CoordWidth-1:0] b_o,
+  output logic [Buffers*18*CoordWidth-1:0] n_o
 );
 
-  (* mem2reg *) logic [1:0] state_q [2];
-  logic       wr_ptr_q, rd_ptr_q;
-  (* mem2reg *) logic [30*CoordWidth-1:0]        b_q [2];
-  (* mem2reg *) logic [18*CoordWidth-1:0]        n_q [2];
-  (* mem2reg *) logic [tess_pkg::PatchBits-1:0]  patch_q [2];
-  (* mem2reg *) logic [tess_pkg::IdBits-1:0]     id_q [2];
-  (* mem2reg *) logic [tess_pkg::FlagBits-1:0]   flags_q [2];
+  (* mem2reg *) logic [1:0] state_q [Buffers];
+  logic [PtrW-1:0] wr_ptr_q, rd_ptr_q;
+  (* mem2reg *) logic [30*CoordWidth-1:0]        b_q [Buffers];
+  (* mem2reg *) logic [18*CoordWidth-1:0]        n_q [Buffers];
+  (* mem2reg *) logic [tess_pkg::PatchBits-1:0]  patch_q [Buffers];
+  (* mem2reg *) logic [tess_pkg::IdBits-1:0]     id_q [Buffers];
+  (* mem2reg *) logic [tess_pkg::FlagBits-1:0]   flags_q [Buffers];
 
   assign wr_empty_o = (state_q[wr_ptr_q] == tess_pkg::BufEmpty);
   assign rd_full_o  = (state_q[rd_ptr_q] == tess_pkg::BufFull);
@@ -47,53 +50,56 @@ module tess_cpbuf #(
   assign rd_id_o    = id_q[rd_ptr_q];
   assign rd_flags_o = flags_q[rd_ptr_q];
 
+  // The next buffer round the ring.
+  logic [PtrW-1:0] wr_ptr_next, rd_ptr_next;
+  assign wr_ptr_next = (Buffers == 1 || wr_ptr_q == PtrW'(Buffers - 1)) ? '0 : wr_ptr_q + PtrW'(1);
+  assign rd_ptr_next = (Buffers == 1 || rd_ptr_q == PtrW'(Buffers - 1)) ? '0 : rd_ptr_q + PtrW'(1);
+
   // The three transitions need different start states, so they never hit one buffer in
   // the same cycle.
-  (* mem2reg *) logic [1:0] state_d [2];
-  logic       wr_ptr_d, rd_ptr_d;
+  (* mem2reg *) logic [1:0] state_d [Buffers];
+  logic [PtrW-1:0] wr_ptr_d, rd_ptr_d;
   always_comb begin
-    for (int b = 0; b < 2; b++) state_d[b] = state_q[b];
+    for (int b = 0; b < Buffers; b++) state_d[b] = state_q[b];
     wr_ptr_d = wr_ptr_q;
     rd_ptr_d = rd_ptr_q;
     if (wr_i) begin
       state_d[wr_ptr_q] = tess_pkg::BufFull;
-      wr_ptr_d          = !wr_ptr_q;
+      wr_ptr_d          = wr_ptr_next;
     end
     if (drain_i) begin
       state_d[rd_ptr_q] = tess_pkg::BufDraining;
-      rd_ptr_d          = !rd_ptr_q;
+      rd_ptr_d          = rd_ptr_next;
     end
     if (release_i) state_d[release_buf_i] = tess_pkg::BufEmpty;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      state_q[0] <= tess_pkg::BufEmpty;
-      state_q[1] <= tess_pkg::BufEmpty;
-      wr_ptr_q   <= 1'b0;
-      rd_ptr_q   <= 1'b0;
+      for (int b = 0; b < Buffers; b++) state_q[b] <= tess_pkg::BufEmpty;
+      wr_ptr_q <= '0;
+      rd_ptr_q <= '0;
     end else begin
-      state_q[0] <= state_d[0];
-      state_q[1] <= state_d[1];
-      wr_ptr_q   <= wr_ptr_d;
-      rd_ptr_q   <= rd_ptr_d;
+      for (int b = 0; b < Buffers; b++) state_q[b] <= state_d[b];
+      wr_ptr_q <= wr_ptr_d;
+      rd_ptr_q <= rd_ptr_d;
     end
   end
 
   // The buffers' contents: written by the CPG, not reset (read only while FULL or DRAINING).
-  (* mem2reg *) logic [30*CoordWidth-1:0]        b_d [2];
-  (* mem2reg *) logic [18*CoordWidth-1:0]        n_d [2];
-  (* mem2reg *) logic [tess_pkg::PatchBits-1:0]  patch_d [2];
-  (* mem2reg *) logic [tess_pkg::IdBits-1:0]     id_d [2];
-  (* mem2reg *) logic [tess_pkg::FlagBits-1:0]   flags_d [2];
+  (* mem2reg *) logic [30*CoordWidth-1:0]        b_d [Buffers];
+  (* mem2reg *) logic [18*CoordWidth-1:0]        n_d [Buffers];
+  (* mem2reg *) logic [tess_pkg::PatchBits-1:0]  patch_d [Buffers];
+  (* mem2reg *) logic [tess_pkg::IdBits-1:0]     id_d [Buffers];
+  (* mem2reg *) logic [tess_pkg::FlagBits-1:0]   flags_d [Buffers];
   always_comb begin
-    for (int b = 0; b < 2; b++) begin
+    for (int b = 0; b < Buffers; b++) begin
       b_d[b]     = b_q[b];
       n_d[b]     = n_q[b];
       patch_d[b] = patch_q[b];
       id_d[b]    = id_q[b];
       flags_d[b] = flags_q[b];
-      if (wr_i && wr_ptr_q == 1'(b)) begin
+      if (wr_i && wr_ptr_q == PtrW'(b)) begin
         b_d[b]     = wr_b_i;
         n_d[b]     = wr_n_i;
         patch_d[b] = wr_patch_i;
@@ -103,7 +109,7 @@ module tess_cpbuf #(
     end
   end
   always_ff @(posedge clk_i) begin
-    for (int b = 0; b < 2; b++) begin
+    for (int b = 0; b < Buffers; b++) begin
       b_q[b]     <= b_d[b];
       n_q[b]     <= n_d[b];
       patch_q[b] <= patch_d[b];
@@ -112,8 +118,10 @@ module tess_cpbuf #(
     end
   end
 
-  assign b_o = {b_q[1], b_q[0]};
-  assign n_o = {n_q[1], n_q[0]};
+  for (genvar b = 0; b < Buffers; b++) begin : g_out
+    assign b_o[b * 30 * CoordWidth +: 30 * CoordWidth] = b_q[b];
+    assign n_o[b * 18 * CoordWidth +: 18 * CoordWidth] = n_q[b];
+  end
 
   // Each transition from its one legal state. (Verilator 5.006 fails internally on an array
   // select inside an assertion of an --x-assign unique build: the states are read outside it.)

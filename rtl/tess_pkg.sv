@@ -15,6 +15,7 @@ package tess_pkg;
   localparam int unsigned Contexts      = 4;   // V
   localparam int unsigned TriFifoDepth  = 2;   // Dt
   localparam int unsigned VtxFifoDepth  = 2;   // Dv
+  localparam int unsigned CpBuffers     = 2;   // Nb: control-point buffers between CPG and TE
   localparam int unsigned CpgLanes      = 1;   // CPG edge lanes: 1 (edges in turn) or 3 (at once)
   localparam int unsigned CpgDigitBits  = 1;   // r: CPG divider / square-root bits per cycle
   localparam int unsigned CpgTags       = 0;   // 1: the input stream carries scalar tags (STPN)

@@ -11,8 +11,10 @@ module tess_te #(
   parameter int unsigned IntBlocks  = tess_pkg::IntBlocks,
   parameter int unsigned IntLatency = tess_pkg::IntLatency,
   parameter int unsigned Contexts   = tess_pkg::Contexts,
+  parameter int unsigned Buffers    = tess_pkg::CpBuffers,
   parameter int unsigned InjectBug  = tess_pkg::InjectBug,
   localparam int unsigned W         = CoordWidth,
+  localparam int unsigned BufW      = (Buffers > 1) ? $clog2(Buffers) : 1,
   localparam int unsigned VtxW      = 6 * W + 2 * (BaryBits + 1) + 3 * tess_pkg::FactorBits
                                       + tess_pkg::IndexBits + tess_pkg::IdBits + 1 + tess_pkg::FlagBits
 ) (
@@ -21,15 +23,15 @@ module tess_te #(
   input  logic [tess_pkg::ModeBits-1:0]   mode_i,
   // Control-point buffers
   input  logic                            rd_full_i,
-  input  logic                            rd_ptr_i,
+  input  logic [BufW-1:0]                 rd_ptr_i,
   input  logic [tess_pkg::PatchBits-1:0]  rd_patch_i,  // {setup, pattern, L}
   input  logic [tess_pkg::IdBits-1:0]     rd_id_i,
   input  logic [tess_pkg::FlagBits-1:0]   rd_flags_i,
-  input  logic [2*30*W-1:0]               b_i,
-  input  logic [2*18*W-1:0]               n_i,
+  input  logic [Buffers*30*W-1:0]         b_i,         // buffer b at [b 30W +: 30W]
+  input  logic [Buffers*18*W-1:0]         n_i,
   output logic                            drain_o,
   output logic                            release_o,
-  output logic                            release_buf_o,
+  output logic [BufW-1:0]                 release_buf_o,
   // VTX FIFO
   input  logic                            vtx_full_i,
   output logic                            vtx_push_o,
@@ -75,7 +77,7 @@ module tess_te #(
   (* mem2reg *) logic [IdBits-1:0]  ctx_id_q [V];
   (* mem2reg *) logic [FlagW-1:0]   ctx_flags_q [V];
   (* mem2reg *) logic               ctx_last_q [V];
-  (* mem2reg *) logic               ctx_buf_q [V];
+  (* mem2reg *) logic [BufW-1:0]    ctx_buf_q [V];
   (* mem2reg *) logic [NumOps-1:0]  issued_q [V];
   (* mem2reg *) logic [NumOps-1:0]  done_q [V];
   (* mem2reg *) logic [3*W-1:0]     temp_q [V][NumOps];
@@ -166,7 +168,7 @@ module tess_te #(
   for (genvar i = 0; i < N; i++) begin : g_int
     logic [IdxW-1:0] ctx;
     logic [OpW-1:0]  op;
-    logic            bank;
+    logic [BufW-1:0] bank;
     (* mem2reg *) logic [3*W-1:0]  bsel [10];
     (* mem2reg *) logic [3*W-1:0]  nsel [6];
     (* mem2reg *) logic [3*W-1:0]  tsel [12];
@@ -174,11 +176,22 @@ module tess_te #(
     assign ctx  = age_ctx[slot_age[i]];
     assign op   = slot_op[i];
     assign bank = ctx_buf_q[ctx];
-    for (genvar k = 0; k < 10; k++) begin : g_b
-      assign bsel[k] = bank ? b_i[(30 + 3 * k) * W +: 3 * W] : b_i[3 * k * W +: 3 * W];
-    end
-    for (genvar k = 0; k < 6; k++) begin : g_n
-      assign nsel[k] = bank ? n_i[(18 + 3 * k) * W +: 3 * W] : n_i[3 * k * W +: 3 * W];
+    // The operands of the context's buffer: one 2:1 multiplexer per bit and buffer beyond the
+    // first, with constant part-selects (a part-select at a variable offset would make Yosys
+    // build a shifter over every buffer's bits before optimizing it away).
+    always_comb begin
+      for (int k = 0; k < 10; k++) begin
+        bsel[k] = b_i[3 * k * W +: 3 * W];
+        for (int b = 1; b < Buffers; b++) begin
+          if (bank == BufW'(b)) bsel[k] = b_i[(30 * b + 3 * k) * W +: 3 * W];
+        end
+      end
+      for (int k = 0; k < 6; k++) begin
+        nsel[k] = n_i[3 * k * W +: 3 * W];
+        for (int b = 1; b < Buffers; b++) begin
+          if (bank == BufW'(b)) nsel[k] = n_i[(18 * b + 3 * k) * W +: 3 * W];
+        end
+      end
     end
     // Temporaries T0..T11 of the context: explicit one-hot selects (an index into the
     // two-dimensional array would be decoded over all V x 14 entries).
@@ -318,7 +331,8 @@ module tess_te #(
     logic [tess_pkg::IndexBits-1:0] index_d;
     logic [IdBits-1:0]  id_d;
     logic [FlagW-1:0]   flags_d;
-    logic               last_d, buf_d;
+    logic               last_d;
+    logic [BufW-1:0]    buf_d;
     logic [NumOps-1:0]  issued_d, done_d;
     always_comb begin
       if (alloc_here) begin

@@ -1,4 +1,4 @@
-// PN-triangle tessellation unit: TRI FIFO -> CPG -> two control-point buffers -> TE (DPG,
+// PN-triangle tessellation unit: TRI FIFO -> CPG -> control-point buffers -> TE (DPG,
 // contexts, scheduler, INT blocks) -> VTX FIFO, plus the performance counters.
 // Cycle-by-cycle specification: docs/microarchitecture.md. Every output is a function of
 // registered state only.
@@ -14,6 +14,7 @@ module tess_unit #(
   parameter int unsigned Contexts      = tess_pkg::Contexts,
   parameter int unsigned TriFifoDepth  = tess_pkg::TriFifoDepth,
   parameter int unsigned VtxFifoDepth  = tess_pkg::VtxFifoDepth,
+  parameter int unsigned CpBuffers     = tess_pkg::CpBuffers,
   parameter int unsigned CpgLanes      = tess_pkg::CpgLanes,
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
   parameter int unsigned CpgTags       = tess_pkg::CpgTags,
@@ -153,14 +154,16 @@ module tess_unit #(
   );
 
   // ------------------------------------------------------------------ control-point buffers
-  logic               rd_full, rd_ptr, drain, release_buf, release_last;
+  localparam int unsigned BufW = (CpBuffers > 1) ? $clog2(CpBuffers) : 1;
+  logic               rd_full, drain, release_last;
+  logic [BufW-1:0]    rd_ptr, release_buf;
   logic [tess_pkg::PatchBits-1:0] rd_patch;
   logic [IdBits-1:0]  rd_id;
   logic [FlagW-1:0]   rd_flags;
-  logic [2*30*W-1:0]  cp_b;
-  logic [2*18*W-1:0]  cp_n;
+  logic [CpBuffers*30*W-1:0] cp_b;
+  logic [CpBuffers*18*W-1:0] cp_n;
 
-  tess_cpbuf #(.CoordWidth(W)) u_cpbuf (
+  tess_cpbuf #(.CoordWidth(W), .Buffers(CpBuffers)) u_cpbuf (
     .clk_i        (clk_i),
     .rst_ni       (rst_ni),
     .wr_empty_o   (buf_wr_empty),
@@ -196,6 +199,7 @@ module tess_unit #(
     .IntBlocks (IntBlocks),
     .IntLatency(IntLatency),
     .Contexts  (Contexts),
+    .Buffers   (CpBuffers),
     .InjectBug (InjectBug)
   ) u_te (
     .clk_i          (clk_i),

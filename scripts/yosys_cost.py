@@ -120,6 +120,9 @@ class Module:
 AUTO_NAME = re.compile(r"(?<!\S)\$(?!paramod)[^\s$]*\$\S*")  # $add$file:line$N_Y, $procmux$N, ...
 SOURCE_IN_NAME = re.compile(r"\$/[^$\s]*")  # the file:line part of an automatic name
 COUNTER = re.compile(r"\$(\d+)")  # Yosys's global counter in an automatic name
+# A public name with an automatic part: Yosys names a block-local declaration of a for loop
+# \g_ctx[0].$fordecl_block$1080.a, with the global counter in it.
+ESCAPED_AUTO = re.compile(r"(?<!\S)\\\S*\$[A-Za-z_]+\$\d+\S*")
 
 
 def parse_rtlil(text):
@@ -164,7 +167,7 @@ def normalized(module):
     and their global counter becomes its rank within the module (the counter's offset depends on
     what Yosys elaborated before), and declarations are sorted (the dump's order follows the
     original names)."""
-    tokens = {t for line in module.body for t in AUTO_NAME.findall(line)}
+    tokens = {t for line in module.body for pattern in (AUTO_NAME, ESCAPED_AUTO) for t in pattern.findall(line)}
     counters = sorted({int(n) for t in tokens for n in COUNTER.findall(SOURCE_IN_NAME.sub("", t))})
     rank = {n: i for i, n in enumerate(counters)}
 
@@ -176,7 +179,7 @@ def normalized(module):
     pending = []
     cell, cell_key = None, None
     for raw in module.body:
-        line = AUTO_NAME.sub(rename, raw)
+        line = ESCAPED_AUTO.sub(rename, AUTO_NAME.sub(rename, raw))
         if cell is not None:
             cell.append(line)
             if line == "end":

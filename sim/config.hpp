@@ -31,6 +31,7 @@ struct HardwareConfig {
   int te_contexts = 4;       // vertices the TE keeps in flight (temporary-register sets)
   int tri_fifo_depth = 2;    // input triangle FIFO in front of the CPG
   int vtx_fifo_depth = 2;    // output vertex FIFO between the TE and the geometry engine
+  int cp_buffers = 2;        // control-point buffers: patches between the CPG's write and their last retirement
   CpgMapping cpg_mapping = CpgMapping::Dedicated;
   CpgVariant cpg;            // datapath shape of the dedicated CPG (lanes, digit bits)
   // The CPG takes scalar tags (docs/stpn.md): the input stream carries them and tagged

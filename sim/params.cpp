@@ -7,6 +7,7 @@
 
 #include "model/normal_mode.hpp"
 #include "model/pattern.hpp"
+#include "sim/blocks/cp_buffer.hpp"
 #include "sim/blocks/int_blocks.hpp"
 #include "sim/blocks/te.hpp"
 #include "sim/cpg.hpp"
@@ -32,7 +33,7 @@ constexpr auto E = ParamKind::Environment;
 constexpr auto W = ParamKind::Workload;
 constexpr auto I = ParamType::Int;
 
-const std::array<ParamSpec, 18> kParams{{
+const std::array<ParamSpec, 19> kParams{{
     {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
      "tessellation factor: segments per edge, the same for every triangle of a run",
      TESSIM_PARAM_FIELD(tess_factor)},
@@ -86,6 +87,9 @@ const std::array<ParamSpec, 18> kParams{{
     {"vtx_fifo_depth", "--vtx-fifo-depth", "", "VtxFifoDepth", "Dv", H, I, 1, 64, {}, "vertices",
      "depth of the output vertex FIFO between the TE and the geometry engine",
      TESSIM_PARAM_FIELD(vtx_fifo_depth)},
+    {"cp_buffers", "--cp-buffers", "", "CpBuffers", "Nb", H, I, 1, ControlPointBuffer::kMaxBuffers, {}, "patches",
+     "control-point buffers between the CPG and the TE: patches written and not yet fully retired",
+     TESSIM_PARAM_FIELD(cp_buffers)},
 }};
 
 #undef TESSIM_PARAM_FIELD

@@ -44,9 +44,9 @@ std::string summary(const SimResult& r) {
   std::ostringstream s;
   char buf[512];
   std::snprintf(buf, sizeof buf,
-                "unit     N=%d INT (latency %d), V=%d contexts, FIFOs tri %d / vtx %d, Q%d.%d (W=%d) B=%d, "
-                "CPG %s: %d cycles/triangle",
-                c.int_blocks, c.int_latency, c.te_contexts, c.tri_fifo_depth, c.vtx_fifo_depth,
+                "unit     N=%d INT (latency %d), V=%d contexts, FIFOs tri %d / vtx %d, %d CP buffers, Q%d.%d (W=%d) "
+                "B=%d, CPG %s: %d cycles/triangle",
+                c.int_blocks, c.int_latency, c.te_contexts, c.tri_fifo_depth, c.vtx_fifo_depth, c.cp_buffers,
                 c.format.coord_int_bits, c.format.coord_frac_bits, c.format.coord_width(), c.format.bary_bits,
                 to_string(c.cpg_mapping).c_str(), r.cpg_cycles);
   s << buf;

@@ -46,6 +46,7 @@ Unit::Unit(const HardwareConfig& cfg, NormalMode normals, int cpg_gpe_cycles)
       tri_fifo_(cfg.tri_fifo_depth),
       cpg_(normals, cfg.format, cpg_counter_load(cfg, normals, cpg_gpe_cycles), cfg.cpg_mapping == CpgMapping::Gpe,
            cfg.cpg_tags != 0, cfg.cpg),
+      buffers_(cfg.cp_buffers),
       te_(cfg.int_blocks, cfg.int_latency, cfg.te_contexts, normals, cfg.format),
       vtx_fifo_(cfg.vtx_fifo_depth),
       counters_(cfg.int_blocks) {

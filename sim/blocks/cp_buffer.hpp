@@ -1,11 +1,13 @@
-// Control-point buffers of rtl/tess_cpbuf.sv (docs/microarchitecture.md §6): two entries, so
-// that the CPG fills one while the TE reads the other. The CPG writes at wr_ptr, the DPG hands
-// out the points of the patch at rd_ptr; an entry is EMPTY -> FULL (CPG write) -> DRAINING (last
-// domain point handed out) -> EMPTY (last vertex of the patch retired).
+// Control-point buffers of rtl/tess_cpbuf.sv (docs/microarchitecture.md §6): a ring of
+// cp_buffers entries, so that the CPG fills one while the TE reads the others. The CPG writes at
+// wr_ptr, the DPG hands out the points of the patch at rd_ptr; an entry is EMPTY -> FULL (CPG
+// write) -> DRAINING (last domain point handed out) -> EMPTY (last vertex of the patch retired).
+// Both pointers step round the ring, so patches are written, drained and released in order.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 
 #include "sim/cpg.hpp"
 
@@ -13,6 +15,7 @@ namespace tessim::sim {
 
 class ControlPointBuffer {
  public:
+  static constexpr int kMaxBuffers = 8;
   enum class State : std::uint8_t { Empty, Full, Draining };
   struct Entry {
     ControlPointsFx cp;
@@ -23,34 +26,46 @@ class ControlPointBuffer {
     std::uint32_t id = 0;
   };
 
+  explicit ControlPointBuffer(int buffers = 2) : count_(buffers) {
+    if (buffers < 1 || buffers > kMaxBuffers) throw std::invalid_argument("ControlPointBuffer: 1..8 buffers");
+  }
+
   void reset() {
     for (Entry& e : entries_) e.state = State::Empty;
     wr_ptr_ = rd_ptr_ = 0;
   }
 
+  int count() const { return count_; }
   bool wr_empty() const { return entries_[static_cast<std::size_t>(wr_ptr_)].state == State::Empty; }
   bool rd_full() const { return entries_[static_cast<std::size_t>(rd_ptr_)].state == State::Full; }
   int rd_ptr() const { return rd_ptr_; }
   const Entry& rd() const { return entries_[static_cast<std::size_t>(rd_ptr_)]; }
   const Entry& entry(int index) const { return entries_[static_cast<std::size_t>(index)]; }
-  bool empty() const { return entries_[0].state == State::Empty && entries_[1].state == State::Empty; }
+  bool empty() const {
+    for (int b = 0; b < count_; ++b)
+      if (entries_[static_cast<std::size_t>(b)].state != State::Empty) return false;
+    return true;
+  }
 
   // CPG write (while wr_empty()): fill the entry, then it is FULL and wr_ptr moves on.
   Entry& write_slot() { return entries_[static_cast<std::size_t>(wr_ptr_)]; }
   void commit_write() {
     entries_[static_cast<std::size_t>(wr_ptr_)].state = State::Full;
-    wr_ptr_ ^= 1;
+    wr_ptr_ = next(wr_ptr_);
   }
   // DPG handed out the patch's last point: DRAINING, rd_ptr moves on.
   void drain() {
     entries_[static_cast<std::size_t>(rd_ptr_)].state = State::Draining;
-    rd_ptr_ ^= 1;
+    rd_ptr_ = next(rd_ptr_);
   }
   // The patch's last vertex retired.
   void release(int index) { entries_[static_cast<std::size_t>(index)].state = State::Empty; }
 
  private:
-  std::array<Entry, 2> entries_;
+  int next(int ptr) const { return ptr + 1 == count_ ? 0 : ptr + 1; }
+
+  std::array<Entry, kMaxBuffers> entries_;
+  int count_;
   int wr_ptr_ = 0, rd_ptr_ = 0;
 };
 

@@ -146,7 +146,9 @@ TEST(Schema, BinaryPrintsValidJsonListingEveryParameter) {
   EXPECT_EQ(s["rtl_parameters"]["Contexts"], "te_contexts");
   EXPECT_EQ(s["rtl_parameters"]["CpgDigitBits"], "cpg_digit_bits");
   EXPECT_EQ(s["rtl_parameters"]["CpgTags"], "cpg_tags");
-  EXPECT_EQ(s["rtl_parameters"].size(), 11u);
+  EXPECT_EQ(s["rtl_parameters"]["CpBuffers"], "cp_buffers");
+  const auto with_rtl = std::count_if(unit_params().begin(), unit_params().end(), [](const ParamSpec& p) { return p.rtl; });
+  EXPECT_EQ(s["rtl_parameters"].size(), static_cast<std::size_t>(with_rtl));
 }
 
 }  // namespace

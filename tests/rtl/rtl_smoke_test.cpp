@@ -258,11 +258,13 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   const sim::HardwareConfig w28 = rtl::make_rtl_unit("n2_w28b20")->config();
   EXPECT_EQ(w28.tri_fifo_depth, 3);
   EXPECT_EQ(w28.vtx_fifo_depth, 5);
+  EXPECT_EQ(w28.cp_buffers, 3);
   EXPECT_EQ(w28.format.coord_width(), 28);
   EXPECT_EQ(w28.format.bary_bits, 20);
   const sim::HardwareConfig w20 = rtl::make_rtl_unit("n1_w20b18")->config();
   EXPECT_EQ(w20.tri_fifo_depth, 5);
   EXPECT_EQ(w20.vtx_fifo_depth, 3);
+  EXPECT_EQ(w20.cp_buffers, 1);
   EXPECT_EQ(w20.format.coord_width(), 20);
   EXPECT_EQ(w20.format.bary_bits, 18);
   EXPECT_EQ(w20.int_latency, 2);

@@ -51,9 +51,13 @@ def test_keys(tmp):
     shutil.copytree(ROOT / "rtl", edited)
     fifo = edited / "tess_fifo.sv"
     text = fifo.read_text()
-    # Rename one of the FIFO's registers: a real change of the elaborated module.
+    # Rename one of the FIFO's registers and add logic: a real change of the elaborated module,
+    # which also shifts Yosys's global counter for the automatic names of every module elaborated
+    # after it (the TE's for-loop declarations carry that counter in their public names).
     register = re.search(r"\b(\w+_q)\b", text).group(1)
-    fifo.write_text(re.sub(rf"\b{register}\b", register + "_renamed", text))
+    text = re.sub(rf"\b{register}\b", register + "_renamed", text)
+    extra = "  logic unused_extra;\n  assign unused_extra = ^{data_i + 1'b1, data_i - 1'b1, data_i * 3};\n"
+    fifo.write_text(text.replace("endmodule", extra + "endmodule"))
     after = keys_of(edited, tmp)
     changed = {base[n][0] for n in base if base[n] != after.get(n)}
     check("an edit of tess_fifo.sv changes the FIFO records' keys and no other",

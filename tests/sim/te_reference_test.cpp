@@ -93,6 +93,7 @@ class TeBench {
         cpg_(cfg.normals, cfg.format,
              cfg.cpg_mapping == CpgMapping::Gpe ? cfg.cpg_gpe_cycles : cpg_cycles(cfg.normals, cfg.format, cfg.cpg),
              cfg.cpg_mapping == CpgMapping::Gpe, cfg.cpg_tags != 0, cfg.cpg),
+        buffers_(cfg.cp_buffers),
         te_(cfg.int_blocks, cfg.int_latency, cfg.te_contexts, cfg.normals, cfg.format),
         vtx_fifo_(cfg.vtx_fifo_depth) {
     buffers_.reset();
@@ -217,6 +218,7 @@ UnitConfig config(NormalMode normals, int n, int latency, int v, int vtx_depth, 
   c.int_latency = latency;
   c.te_contexts = v;
   c.vtx_fifo_depth = vtx_depth;
+  c.cp_buffers = 1 + (n + latency + v) % 4;  // a buffer index of 0..3 in the contexts
   c.gpe_cycles = gpe_cycles;
   c.gpe_stall_prob = stall;
   c.seed = static_cast<std::uint64_t>(n * 100 + latency * 10 + v);

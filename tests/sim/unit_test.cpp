@@ -485,6 +485,59 @@ TEST(UnitStatistics, TriStallsAreTheCyclesAnOfferedTriangleWaits) {
   }
 }
 
+// The control-point buffers are a ring of cp_buffers entries (docs/microarchitecture.md §6): the
+// CPG writes at most Nb patches ahead of the TE's retirement of their last vertices, fills every
+// buffer when the geometry engine is the slower side, and the buffer count changes when vertices
+// come out, never what they are. With one buffer the TE drains at every patch boundary: the
+// slowest run.
+TEST(UnitBuffers, CpgRunsAtMostNbPatchesAheadAndVerticesDoNotDependOnNb) {
+  struct Resident : CycleObserver {
+    std::uint64_t vertices_per_patch = 0, writes = 0, retired = 0, max_resident = 0;
+    bool on_cycle(const Unit& unit, const GpeCycle&) override {
+      if (unit.activity().cpg_action == CpgAction::Write) ++writes;
+      if (unit.activity().retired) ++retired;
+      max_resident = std::max(max_resident, writes - retired / vertices_per_patch);
+      return true;
+    }
+  };
+  const Mesh mesh = bumpy_sphere(1);
+  for (int k : {16, 2}) {
+    std::vector<VertexFx> reference;
+    std::uint64_t previous_cycles = 0;
+    for (int nb = 1; nb <= 5; ++nb) {
+      SCOPED_TRACE("K " + std::to_string(k) + ", Nb " + std::to_string(nb));
+      UnitConfig cfg = config(1, 4, 1, k, 3);
+      cfg.cpg = CpgVariant{3, cfg.format.coord_width()};  // 14 cycles a triangle: faster than the GE at K = 16
+      cfg.cp_buffers = nb;
+      cfg.validate("test");
+      Resident resident;
+      resident.vertices_per_patch = 10;  // L = 3
+      SimHooks hooks;
+      hooks.observers.push_back(&resident);
+      std::vector<VertexFx> out;
+      hooks.on_vertex = [&](const VertexFx& v) { out.push_back(v); };
+      const SimResult r = simulate(mesh, cfg, hooks);
+      ASSERT_EQ(resident.writes, mesh.triangle_count());
+      EXPECT_LE(resident.max_resident, static_cast<std::uint64_t>(nb));
+      if (k == 16) {
+        EXPECT_EQ(resident.max_resident, static_cast<std::uint64_t>(nb)) << "every buffer filled";
+      }
+      if (nb == 1) {
+        reference = out;
+      } else {
+        EXPECT_EQ(out, reference);
+        EXPECT_LE(r.unit.cycles, previous_cycles) << "a buffer more never slows the unit";
+        if (nb == 2 && k == 2) {
+          EXPECT_LT(r.unit.cycles, previous_cycles) << "one buffer drains the TE at every patch";
+        }
+      }
+      previous_cycles = r.unit.cycles;
+      // The fast-forwarded run takes the same cycles.
+      EXPECT_EQ(simulate(mesh, cfg).unit.cycles, r.unit.cycles);
+    }
+  }
+}
+
 TEST(UnitStatistics, RealMeshDefaultConfig) {
   const Mesh mesh = load_mesh(kWuson);
   UnitConfig cfg;
