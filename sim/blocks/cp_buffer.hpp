@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include "sim/cpg.hpp"
 
@@ -26,8 +27,10 @@ class ControlPointBuffer {
     std::uint32_t id = 0;
   };
 
-  explicit ControlPointBuffer(int buffers = 2) : count_(buffers) {
-    if (buffers < 1 || buffers > kMaxBuffers) throw std::invalid_argument("ControlPointBuffer: 1..8 buffers");
+  // buffers: HardwareConfig::cp_buffers, validated by the parameter table (sim/params.cpp).
+  explicit ControlPointBuffer(int buffers) : count_(buffers) {
+    if (buffers < 1 || buffers > kMaxBuffers)
+      throw std::invalid_argument("ControlPointBuffer: 1.." + std::to_string(kMaxBuffers) + " buffers");
   }
 
   void reset() {
@@ -35,7 +38,6 @@ class ControlPointBuffer {
     wr_ptr_ = rd_ptr_ = 0;
   }
 
-  int count() const { return count_; }
   bool wr_empty() const { return entries_[static_cast<std::size_t>(wr_ptr_)].state == State::Empty; }
   bool rd_full() const { return entries_[static_cast<std::size_t>(rd_ptr_)].state == State::Full; }
   int rd_ptr() const { return rd_ptr_; }
