@@ -152,12 +152,22 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   port("tri_factors_i", true);
   dec(unit + "u_tri_fifo.count_q", clog2(static_cast<std::uint64_t>(hw.tri_fifo_depth) + 1));
   group("CPG");
-  bit(unit + "u_cpg.accept");
-  bit(unit + "u_cpg.busy_q");
-  dec(unit + "u_cpg.counter_q", cpg_counter);
-  dec(unit + "u_cpg.edge_q", 2);
-  dec(unit + "u_cpg.step_q", cpg_step);
-  bit(unit + "u_cpg.write");
+  // Each copy of the CPG (rtl/tess_cpg_array.sv); the turn pointers exist with two or more.
+  const int copies = hw.cpg.copies;
+  if (copies > 1) {
+    const std::string turn = "[" + std::to_string(clog2(static_cast<std::uint64_t>(copies)) - 1) + ":0]";
+    o << "@24\n" << unit << "u_cpgs.accept_q" << turn << "\n";
+    o << "@24\n" << unit << "u_cpgs.write_q" << turn << "\n";
+  }
+  for (int c = 0; c < copies; ++c) {
+    const std::string cpg = unit + "u_cpgs.g_copy[" + std::to_string(c) + "].u_cpg.";
+    bit(cpg + "accept");
+    bit(cpg + "busy_q");
+    dec(cpg + "counter_q", cpg_counter);
+    dec(cpg + "edge_q", 2);
+    dec(cpg + "step_q", cpg_step);
+    bit(cpg + "write");
+  }
   group("control-point buffers (0 EMPTY, 1 FULL, 2 DRAINING)");
   for (int b = 0; b < hw.cp_buffers; ++b) dec(unit + "u_cpbuf.state_q[" + std::to_string(b) + "]", 2);
   // The pointers are vectors even when one bit wide: the dump names them with their range.

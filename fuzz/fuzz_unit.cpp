@@ -84,6 +84,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   cfg.cp_buffers = in.ConsumeIntegralInRange(1, 4);
   cfg.cpg_mapping = in.ConsumeBool() ? CpgMapping::Gpe : CpgMapping::Dedicated;
   cfg.cpg_gpe_cycles = in.ConsumeIntegralInRange(1, 80);
+  const int copies = in.ConsumeIntegralInRange(1, 4);  // the GE mapping has one CPG
+  cfg.cpg.copies = cfg.cpg_mapping == CpgMapping::Dedicated ? copies : 1;
   static constexpr NormalMode kModes[] = {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear};
   cfg.normals = kModes[in.ConsumeIntegralInRange(0, 2)];
   cfg.gpe_stall_prob = in.ConsumeIntegralInRange(0, 4) * 0.15;

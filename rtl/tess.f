@@ -6,6 +6,7 @@ tess_assert.svh
 tess_pkg.sv
 tess_cpbuf.sv
 tess_cpg.sv
+tess_cpg_array.sv
 tess_cpg_edge.sv
 tess_cpg_tag.sv
 tess_div.sv

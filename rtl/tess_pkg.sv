@@ -18,6 +18,7 @@ package tess_pkg;
   localparam int unsigned CpBuffers     = 2;   // Nb: control-point buffers between CPG and TE
   localparam int unsigned CpgLanes      = 1;   // CPG edge lanes: 1 (edges in turn) or 3 (at once)
   localparam int unsigned CpgDigitBits  = 1;   // r: CPG divider / square-root bits per cycle
+  localparam int unsigned CpgCopies     = 1;   // Mc: CPGs taking successive triangles in turn
   localparam int unsigned CpgTags       = 0;   // 1: the input stream carries scalar tags (STPN)
   // Deliberate faults that prove the co-simulation checker can fail:
   // 1 = INT rounding drops the +half (floor instead of round half up);

@@ -18,6 +18,7 @@ module tess_unit #(
   parameter int unsigned CpgLanes      = tess_pkg::CpgLanes,
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
   parameter int unsigned CpgTags       = tess_pkg::CpgTags,
+  parameter int unsigned CpgCopies     = tess_pkg::CpgCopies,
   parameter int unsigned InjectBug     = tess_pkg::InjectBug,
   localparam int unsigned W            = 1 + CoordIntBits + CoordFracBits,
   localparam int unsigned CtrW         = tess_pkg::CounterBits
@@ -105,52 +106,39 @@ module tess_unit #(
     .empty_o(tri_empty)
   );
 
-  // ------------------------------------------------------------------ CPG
+  // ------------------------------------------------------------------ CPG (copies and their FSUs)
   logic                cpg_wr, buf_wr_empty;
   logic [30*W-1:0]     cpg_b;
   logic [18*W-1:0]     cpg_n;
-  logic [DescW-1:0]    cpg_desc;
+  logic [tess_pkg::PatchBits-1:0] cpg_patch;
   logic [IdBits-1:0]   cpg_id;
   logic [FlagW-1:0]    cpg_flags;
   logic                cpg_busy, cpg_blocked, cpg_active;
 
-  tess_cpg #(
+  tess_cpg_array #(
     .CoordIntBits (CoordIntBits),
     .CoordFracBits(CoordFracBits),
     .CpgLanes     (CpgLanes),
     .CpgDigitBits (CpgDigitBits),
-    .CpgTags      (CpgTags)
-  ) u_cpg (
-    .clk_i      (clk_i),
-    .rst_ni     (rst_ni),
-    .mode_i     (mode_i),
-    .tri_avail_i(!tri_empty),
-    .tri_i      (tri_head),
-    .tri_pop_o  (tri_pop),
-    .buf_empty_i(buf_wr_empty),
-    .buf_wr_o   (cpg_wr),
-    .buf_b_o    (cpg_b),
-    .buf_n_o    (cpg_n),
-    .buf_desc_o (cpg_desc),
-    .buf_id_o   (cpg_id),
-    .buf_flags_o(cpg_flags),
-    .busy_o     (cpg_busy),
-    .blocked_o  (cpg_blocked),
-    .active_o   (cpg_active)
-  );
-
-  // ------------------------------------------------------------------ factor setup (FSU)
-  // Sequential beside the CPG: its records are complete five cycles after the CPG takes the
-  // triangle, before the CPG can write it (C >= 8); stored with the nets.
-  logic                           fsu_busy;
-  logic [tess_pkg::SetupBits-1:0] cpg_setup;
-  tess_fsu u_fsu (
-    .clk_i  (clk_i),
-    .rst_ni (rst_ni),
-    .start_i(tri_pop),
-    .desc_i (cpg_desc),
-    .busy_o (fsu_busy),
-    .setup_o(cpg_setup)
+    .CpgTags      (CpgTags),
+    .CpgCopies    (CpgCopies)
+  ) u_cpgs (
+    .clk_i       (clk_i),
+    .rst_ni      (rst_ni),
+    .mode_i      (mode_i),
+    .tri_avail_i (!tri_empty),
+    .tri_i       (tri_head),
+    .tri_pop_o   (tri_pop),
+    .buf_empty_i (buf_wr_empty),
+    .buf_wr_o    (cpg_wr),
+    .buf_b_o     (cpg_b),
+    .buf_n_o     (cpg_n),
+    .buf_patch_o (cpg_patch),
+    .buf_id_o    (cpg_id),
+    .buf_flags_o (cpg_flags),
+    .busy_o      (cpg_busy),
+    .blocked_o   (cpg_blocked),
+    .active_o    (cpg_active)
   );
 
   // ------------------------------------------------------------------ control-point buffers
@@ -170,7 +158,7 @@ module tess_unit #(
     .wr_i         (cpg_wr),
     .wr_b_i       (cpg_b),
     .wr_n_i       (cpg_n),
-    .wr_patch_i   ({cpg_setup, cpg_desc[LBits +: tess_pkg::PatternBits], cpg_desc[LBits-1:0]}),
+    .wr_patch_i   (cpg_patch),
     .wr_id_i      (cpg_id),
     .wr_flags_i   (cpg_flags),
     .rd_full_o    (rd_full),
@@ -305,6 +293,5 @@ module tess_unit #(
   `TESS_ASSERT(VtxDataHeld_A, vtx_valid_o && !vtx_ready_i |=> $stable(vtx_head), clk_i, !rst_ni)
   `TESS_ASSERT(FactorInRange_A, tri_push && tri_pattern_i == tess_pkg::PatUniform
                                 |-> tri_l_i >= LBits'(1) && tri_l_i <= LBits'(tess_pkg::MaxFactor), clk_i, !rst_ni)
-  `TESS_ASSERT(FsuRecordsReady_A, !(cpg_wr && fsu_busy), clk_i, !rst_ni)
 
 endmodule

@@ -12,10 +12,17 @@ legalisation, `synth_xilinx` LUT/FF/DSP, logic depth through the hierarchy). Add
 a costed configuration:
 
     cost_unit_*   whole unit (transistors, cells, flops, depth, xilinx_lut, xilinx_ff, xilinx_dsp, ...)
-    cost_cpg_*    the CPG (its module and submodules)
+    cost_cpg_*    the CPG (its module and submodules, times its cpg_copies copies)
     cost_int_*    one INT block alone
     cost_int_all_transistors   N x one INT block
-    cost_rest_transistors      unit - CPG - N INT blocks (TE control, contexts, buffers, FIFOs, FSU)
+    cost_rest_transistors      unit - CPG - N INT blocks (TE control, contexts, buffers, FIFOs, FSUs,
+                               the CPG copies' turn pointers and write-port select)
+    cost_clock_levels          the configuration's cycle time in gate levels: the depth budget
+                               (yosys_cost.DEPTH_BUDGET, 48) or its deepest path if longer
+    cost_time_throughput       vertices per budget cycle: throughput x budget / cost_clock_levels
+                               (the rate at the configuration's own clock, in a time unit common
+                               to every configuration; the GPE's K counts cycles of that clock)
+    cost_time_throughput_per_mtr  cost_time_throughput per million unit transistors
 
 Rows of the gpe CPG mapping get the same figures (the RTL has a dedicated CPG; subtract cost_cpg_*
 for a unit whose CPG runs on the geometry engine).
@@ -107,7 +114,19 @@ def cost_columns(result, n_blocks):
             cols["cost_rest_transistors"] = (cols["cost_unit_transistors"] - cols["cost_cpg_transistors"]
                                              - cols["cost_int_all_transistors"])
     cols["cost_synth_seconds"] = result.get("seconds")
+    if cols.get("cost_unit_depth") is not None:
+        cols["cost_clock_levels"] = yosys_cost.clock_levels(cols["cost_unit_depth"])
     return cols
+
+
+def time_columns(row):
+    """Throughput per unit of time at the configuration's clock (module docstring)."""
+    levels, throughput = row.get("cost_clock_levels"), row.get("throughput")
+    if levels is None or throughput is None:
+        return {}
+    per_time = float(throughput) * yosys_cost.DEPTH_BUDGET / float(levels)
+    return {"cost_time_throughput": per_time,
+            "cost_time_throughput_per_mtr": per_time / (float(row["cost_unit_transistors"]) / 1e6)}
 
 
 def main(argv):
@@ -206,6 +225,7 @@ def main(argv):
             del r[k]
         if selected(r) and rtl_config(r) in results:
             r.update(cost_columns(results[rtl_config(r)], int(r["int_blocks"])))
+            r.update(time_columns(r))
             costed += 1
     out = args.output or (args.results if args.in_place else
                           str(Path(args.results).with_name(Path(args.results).stem + "-costs.csv")))

@@ -32,6 +32,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import yosys_cost  # noqa: E402  (the depth budget)
 
 # Reproducible SVG output (no date, fixed ids).
 plt.rcParams.update({
@@ -367,25 +369,24 @@ def fig_cost(rows, out):
                   ["K"] + [f"N = {n}" for n in Ns], rows_eff,
                   note=f"Grid `balance` ({workload(bal, 'mesh', 'tess_factor', 'int_latency', 'te_contexts', 'normals')}), "
                        "whole-unit transistors.")
-    # Per time instead of per cycle: the clock period scales with the logic depth (the only fmax
-    # estimate Yosys gives without a timing library), relative to the shallowest configuration.
-    depths = {r["int_blocks"]: r.get("cost_unit_depth") for r in bal if r.get("cost_unit_depth")}
-    if depths:
-        shallow = min(depths.values())
+    # Per time instead of per cycle: each configuration at its own clock, the depth budget or its
+    # deepest path if longer (scripts/yosys_cost.py, DEPTH_BUDGET), in units of the budget's cycle.
+    timed = [r for r in bal if r.get("cost_time_throughput") is not None]
+    if timed:
+        depths = {r["int_blocks"]: r["cost_unit_depth"] for r in timed}
         rows_time = []
-        for K in distinct(bal, "gpe_cycles"):
-            vals = {r["int_blocks"]: r["throughput"] * shallow / depths[r["int_blocks"]]
-                    for r in bal if r["gpe_cycles"] == K and r["int_blocks"] in depths}
+        for K in distinct(timed, "gpe_cycles"):
+            vals = {r["int_blocks"]: r["cost_time_throughput"] for r in timed if r["gpe_cycles"] == K}
             best = max(vals, key=vals.get)
             rows_time.append([K] + [(f"**{fmt(vals[n], 4)}**" if n == best else fmt(vals[n], 4)) if n in vals
                                     else "–" for n in Ns])
-        out.table("Throughput per time at the logic-depth clock estimate (vertices per shallowest-unit cycle)",
+        budget = yosys_cost.DEPTH_BUDGET
+        out.table(f"Throughput per time at the configuration's clock (vertices per {budget}-level budget cycle)",
                   ["K"] + [f"N = {n}" for n in Ns], rows_time,
-                  note="fmax taken as proportional to 1 / logic depth of the whole unit (`ltp`, generic cells): "
+                  note=f"Clock: max({budget}, the unit's deepest path) gate levels (`ltp`, generic cells); depths "
                        + ", ".join(f"N = {n}: {d}" for n, d in sorted(depths.items()))
-                       + f". Entries are vertices/cycle x {shallow} / depth(N), i.e. vertices per clock cycle "
-                         "of the shallowest configuration; best per K in bold. The GPE's K is counted in cycles "
-                         "of the same clock.")
+                       + f". Entries are vertices/cycle x {budget} / clock levels; best per K in bold. The GPE's K "
+                         "is counted in cycles of the unit's clock.")
     # All costed configurations, once each.
     configs = {}
     for r in costed:
@@ -647,6 +648,126 @@ def fig_cpg_variants(rows, out):
               [[len(errs), sum(e <= 1e-3 for e in errs), sum(e <= 1e-2 for e in errs), f"{fmt(100 * errs[-1], 3)} %",
                 f"{cpg_label(cpg_variant(worst))}, N = {worst['int_blocks']}, L = {worst['tess_factor']}, "
                 f"K = {worst['gpe_cycles']}, V = {worst['te_contexts']}, {worst['normals']}"]])
+
+
+def copies_of(r):
+    return r.get("cpg_copies") or 1
+
+
+def copies_label(r):
+    lanes, bits = cpg_variant(r)
+    return f"{lanes}x{bits}" + (f" ×{copies_of(r)}" if copies_of(r) > 1 else "")
+
+
+# The pick of a grid cell: the cheapest configuration within this share of the fastest one.
+PICK_SHARE = 0.97
+
+
+def cheapest_near_best(pts, key):
+    """The cheapest (unit transistors) of `pts` whose `key` is at least PICK_SHARE of the best."""
+    if not pts:
+        return None, None
+    best = max(r[key] for r in pts)
+    near = [r for r in pts if r[key] >= PICK_SHARE * best]
+    return min(near, key=lambda r: r["cost_unit_transistors"]), best
+
+
+def fig_cpg_copies(rows, out):
+    """CPG copies (grids cpg_copies, cpg_copies_adaptive, cpg_copies_fast): throughput per cycle
+    and per unit of time at the depth budget's clock against the unit's transistors, the picks on
+    both bases, and the fast-GPE target."""
+    g = [r for r in in_grid(rows, "cpg_copies") if r.get("cost_time_throughput") is not None]
+    if not g:
+        return out.skip("CPG copies", "no costed rows of grid 'cpg_copies' (run scripts/costs.py)")
+    budget = yosys_cost.DEPTH_BUDGET
+    Ls = distinct(g, "tess_factor")
+    K = g[0]["gpe_cycles"]
+    variants = sorted({cpg_variant(r) for r in g})
+    fig, axes = plt.subplots(2, len(Ls), figsize=(4.2 * len(Ls), 7.4), squeeze=False)
+    for j, L in enumerate(Ls):
+        for i, (key, ylabel) in enumerate((("throughput", "vertices / cycle"),
+                                           ("cost_time_throughput", f"vertices / budget cycle ({budget} levels)"))):
+            ax = axes[i][j]
+            for v_i, v in enumerate(variants):
+                pts = sorted((r for r in g if r["tess_factor"] == L and cpg_variant(r) == v), key=copies_of)
+                ax.plot([r["cost_unit_transistors"] / 1e6 for r in pts], [r[key] for r in pts],
+                        "-o" if v[0] == 1 else "--s", ms=3, color=f"C{v_i % 10}", label=cpg_label(v))
+                for r in pts:
+                    ax.annotate(str(copies_of(r)), (r["cost_unit_transistors"] / 1e6, r[key]),
+                                textcoords="offset points", xytext=(2, 2), fontsize=5)
+            if i == 0:
+                ax.axhline(1.0 / K, ls="--", color="0.4", lw=0.8)
+            ax.set_xscale("log")
+            ax.set_title(f"L = {L}, {'per cycle (dashed: 1/K)' if i == 0 else 'per unit of time'}", fontsize=8)
+            ax.set_xlabel("whole unit, million transistors")
+            ax.set_ylabel(ylabel, fontsize=7)
+    axes[0][0].legend(fontsize=6)
+    fig.suptitle(f"CPG copies (number at each point) for each CPG (Ec×r): per cycle and at the configuration's "
+                 f"clock, max({budget}, its logic depth) levels ({workload(g, 'mesh', 'normals', 'int_blocks', 'gpe_cycles', 'cp_buffers')})",
+                 fontsize=8)
+    fig.tight_layout(rect=(0, 0, 1, 0.95))
+    out.save(fig, "cpg_copies")
+
+    def pick_rows(cells):
+        table = []
+        for label, pts in cells:
+            by_cycle, best_cycle = cheapest_near_best(pts, "throughput")
+            by_time, best_time = cheapest_near_best(pts, "cost_time_throughput")
+            by_eff = max(pts, key=lambda r: r["cost_time_throughput_per_mtr"])
+            table.append([label,
+                          f"{copies_label(by_cycle)}: {fmt(by_cycle['throughput'] * K, 4)}, "
+                          f"{fmt(by_cycle['cost_unit_transistors'] / 1e6, 4)} Mtr, depth {by_cycle['cost_unit_depth']}",
+                          f"{copies_label(by_time)}: {fmt(by_time['cost_time_throughput'] * K, 4)}, "
+                          f"{fmt(by_time['cost_unit_transistors'] / 1e6, 4)} Mtr, depth {by_time['cost_unit_depth']}",
+                          f"{copies_label(by_eff)}: {fmt(by_eff['cost_time_throughput_per_mtr'] * 1e3, 4)}",
+                          "same" if copies_label(by_cycle) == copies_label(by_time) else "**differ**"])
+        return table
+
+    cols = ["workload", f"per cycle: cheapest within {PICK_SHARE} of the fastest (Ec×r ×Mc: throughput × K, cost)",
+            "per time: the same at the configuration's clock (throughput × K per budget cycle)",
+            "per time and transistor: best (10⁻³ vertices per budget cycle per Mtr)", "picks"]
+    cells = [(f"L = {L}", [r for r in g if r["tess_factor"] == L]) for L in Ls]
+    a = [r for r in in_grid(rows, "cpg_copies_adaptive") if r.get("cost_time_throughput") is not None]
+    for cam in sorted(distinct(a, "camera"), key=camera_distance):
+        pts = [r for r in a if r["camera"] == cam]
+        cells.append((f"adaptive, view distance {fmt(camera_distance(cam), 3)} "
+                      f"({fmt(pts[0]['workload.vertices_per_patch.mean'], 3)} vertices/patch)", pts))
+    out.table("CPG copies: what to pick per cycle and per unit of time", cols, pick_rows(cells),
+              note=f"Grids `cpg_copies` and `cpg_copies_adaptive` ({workload(g, 'mesh', 'normals', 'int_blocks', 'gpe_cycles', 'cp_buffers')}); "
+                   f"Ec×r ×Mc: edge lanes, digit bits, copies. Time: each configuration at its own clock of "
+                   f"max({budget}, its deepest path) gate levels (scripts/yosys_cost.py, DEPTH_BUDGET), in units of "
+                   f"the budget's cycle; K counts cycles of the unit's clock.")
+
+    # Every configuration: C, copies, the start interval, cost, depth, per-cycle and per-time rates.
+    table = []
+    for r in sorted((r for r in g if r["tess_factor"] == Ls[0]), key=lambda r: (cpg_variant(r), copies_of(r))):
+        table.append([copies_label(r), r["cpg_cycles_per_triangle"], copies_of(r),
+                      math.ceil((r["cpg_cycles_per_triangle"] + 1) / copies_of(r)),
+                      fmt(r["cost_cpg_transistors"] / 1e6, 4), fmt(r["cost_unit_transistors"] / 1e6, 4),
+                      r["cost_cpg_depth"], r["cost_unit_depth"], r["cost_clock_levels"]] +
+                     [fmt(next(x["throughput"] for x in g if x["tess_factor"] == L and copies_label(x) == copies_label(r)) * K, 4)
+                      for L in Ls] +
+                     [fmt(next(x["cost_time_throughput"] for x in g if x["tess_factor"] == L and copies_label(x) == copies_label(r)) * K, 4)
+                      for L in Ls])
+    out.table("CPG copies: every configuration",
+              ["Ec×r ×Mc", "C", "Mc", "start interval", "CPG Mtr", "unit Mtr", "CPG depth", "unit depth",
+               "clock levels"] + [f"throughput × K, L = {L}" for L in Ls] + [f"per budget cycle × K, L = {L}" for L in Ls],
+              table, note="start interval: ⌈(C + 1)/Mc⌉ cycles between triangles when the TE keeps up.")
+
+    # The fast geometry engine (K = 1): the L = 1..3 target of 0.95 vertices per cycle.
+    f = in_grid(rows, "cpg_copies_fast")
+    if f:
+        table = []
+        for L in distinct(f, "tess_factor"):
+            for bits in distinct(f, "cpg_digit_bits"):
+                pts = {copies_of(r): r for r in f if r["tess_factor"] == L and r["cpg_digit_bits"] == bits}
+                first = min((m for m, r in pts.items() if r["throughput"] >= 0.95), default=None)
+                table.append([L, f"3x{bits}", next(iter(pts.values()))["cpg_cycles_per_triangle"]] +
+                             [fmt(pts[m]["throughput"], 4) if m in pts else "–" for m in distinct(f, "cpg_copies")] +
+                             [first if first is not None else "none"])
+        out.table("A fast geometry engine (K = 1): vertices per cycle against CPG copies",
+                  ["L", "CPG", "C"] + [f"Mc = {m}" for m in distinct(f, "cpg_copies")] + ["fewest copies for ≥ 0.95"],
+                  table, note=f"Grid `cpg_copies_fast` ({workload(f, 'mesh', 'normals', 'int_blocks', 'te_contexts', 'cp_buffers', 'gpe_cycles')}).")
 
 
 def fig_contexts(rows, out):
@@ -1265,6 +1386,7 @@ def main(argv):
     fig_cost(rows, out)
     fig_cpg_share(rows, out)
     fig_cpg_variants(rows, out)
+    fig_cpg_copies(rows, out)
     fig_contexts(rows, out)
     fig_normals(rows, out)
     fig_stall(rows, out)

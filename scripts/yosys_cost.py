@@ -22,7 +22,8 @@ a comment or an edit elsewhere in the same file changes nothing.
 The unit's figures are the sums over its module instances (cells, flip-flops, transistors and
 Xilinx cells); its logic depth is the deepest record's, which holds where module boundaries are
 registered and is compared with flattened syntheses in docs/rtl.md. Blocks reported: tess_unit,
-tess_cpg (its subtree), tess_int (one INT block), and every record with its instance count.
+tess_cpg (its subtree times its Mc copies), tess_int (one INT block), and every record with its
+instance count.
 """
 
 import argparse
@@ -41,8 +42,26 @@ RECORD_SCHEMA = 2
 # Leaf modules synthesized inside their parents rather than as records of their own.
 INLINE = ("tess_sat", "tess_dpg_place")
 TOP = "tess_unit"
-# Reported as blocks: the module and its subtree.
-BLOCKS = ("tess_unit", "tess_cpg", "tess_int")
+# Reported as blocks: the module and its subtree, once or times its instances (the CPG's copies
+# together; one INT block, whose count N the study multiplies itself).
+BLOCKS = {"tess_unit": False, "tess_cpg": True, "tess_int": False}
+# The depth budget (docs/rtl.md, Depth budget): the logic depth in generic gate levels (`ltp -noff`)
+# every register-to-register path of the unit must fit in to run at the budget's clock. 48 is what
+# one INT block needs, 45 levels for the W x (B + 2) products and the rounded three-way sum, the one
+# operation the architecture does in a single cycle, and three levels for its operand select. A
+# configuration whose deepest path is longer runs at a clock of that many levels instead.
+DEPTH_BUDGET = 48
+
+
+def clock_levels(depth, budget=DEPTH_BUDGET):
+    """Cycle time of a configuration in gate levels: the budget, or its deepest path if longer."""
+    return max(budget, depth)
+
+
+def over_budget(result, budget=DEPTH_BUDGET):
+    """The records of a cost() result deeper than the budget: (module, depth), deepest first."""
+    deep = {(r["module"], r["depth"]) for r in result["records"] if r["depth"] > budget}
+    return sorted(deep, key=lambda md: (-md[1], md[0]))
 
 GENERIC_SCRIPT = """\
 read_rtlil {job}
@@ -685,9 +704,10 @@ def cost(params, cache, rtl_dir=REPO / "rtl", jobs=2, xilinx=True, require_cache
                 records[name] = result
 
         blocks = {}
-        for block in BLOCKS:
+        for block, all_instances in BLOCKS.items():
             owner = next(n for n in counts if modules[n].base == block)
-            sub = instance_counts(modules, owner)
+            times = counts[owner] if all_instances else 1
+            sub = {n: times * k for n, k in instance_counts(modules, owner).items()}
             blocks[block] = compose(records, sub)
             blocks[block]["depth"], blocks[block]["critical_path"] = composed_depth(modules, records, owner)
         per_record = [{"module": modules[n].base, "derived": n, "instances": counts[n], "key": keys[n],
@@ -709,6 +729,10 @@ def main(argv):
     ap.add_argument("--no-xilinx", action="store_true", help="skip synth_xilinx")
     ap.add_argument("--require-cached", action="store_true", help="synthesize nothing; fail if a record is missing")
     ap.add_argument("--json", help="write the result as JSON (- for stdout)")
+    ap.add_argument("--depth-budget", type=int, default=DEPTH_BUDGET,
+                    help=f"logic levels a register-to-register path may take (default {DEPTH_BUDGET})")
+    ap.add_argument("--check-budget", action="store_true",
+                    help="exit 3 when the unit's deepest path exceeds the depth budget")
     ap.add_argument("--compare-flat", action="store_true",
                     help="also synthesize the unit flattened (scripts/synth.sh) and print the composition's error")
     args = ap.parse_args(argv)
@@ -744,8 +768,17 @@ def main(argv):
     print(f"{'record':<14} {'inst':>4} {'transistors':>12} {'depth':>6}")
     for r in result["records"]:
         print(f"{r['module']:<14} {r['instances']:>4} {r['transistors']:>12} {r['depth']:>6}")
+    depth = result["blocks"]["tess_unit"]["depth"]
+    deep = over_budget(result, args.depth_budget)
+    print(f"depth budget {args.depth_budget}: the unit's deepest path is {depth} levels, "
+          + ("within it" if depth <= args.depth_budget else
+             f"over it: clock at {clock_levels(depth, args.depth_budget)} levels, "
+             f"{args.depth_budget / clock_levels(depth, args.depth_budget):.3f} of the budget's rate")
+          + ("; records deeper than the budget: " + ", ".join(f"{m} {d}" for m, d in deep) if deep else ""))
     if args.compare_flat:
         return compare_flat(result, args)
+    if args.check_budget and depth > args.depth_budget:
+        return 3
     return 0
 
 

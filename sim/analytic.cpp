@@ -65,9 +65,10 @@ AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles, std::optional<
   const double spare_wait = 1.0 / (1.0 - cfg.gpe_stall_prob);
   p.gpe_vertex = gpe_cycles_per_vertex(cfg);
   if (cfg.cpg_mapping == CpgMapping::Dedicated) {
-    // Accept, C - 1 compute cycles, write: C + 1 cycles per triangle. The first patch: push
-    // (cycle 0), accept (1), compute (2..C), write (C + 1), allocate (C + 2), first issue.
-    p.cpg = (cpg_cycles + 1) / P;
+    // Accept, C - 1 compute cycles, write: C + 1 cycles per triangle on each of the Mc copies,
+    // which take triangles in turn. The first patch: push (cycle 0), accept (1), compute
+    // (2..C), write (C + 1), allocate (C + 2), first issue.
+    p.cpg = (cpg_cycles + 1) / (static_cast<double>(cfg.cpg.copies) * P);
     p.gpe = p.gpe_vertex;
     p.fill_cycles = cpg_cycles + 3;
   } else {
@@ -104,7 +105,7 @@ double AnalyticPrediction::run_cycles(std::uint64_t triangles) const {
 
 VaryingWorkloadBounds varying_bounds(const AnalyticPrediction& p, const std::map<int, std::uint64_t>& patches_with_vertices) {
   const double behind_cpg = std::max({p.int_issue, p.te_chain, p.dpg, p.gpe_vertex});
-  const double per_patch_cpg = p.cpg * p.patch_vertices;  // C + 1 (dedicated) per patch
+  const double per_patch_cpg = p.cpg * p.patch_vertices;  // (C + 1) / Mc (dedicated) per patch
   double no_buffer = 0, patches = 0, vertices = 0;
   for (const auto& [points, count] : patches_with_vertices) {
     const auto n = static_cast<double>(count);

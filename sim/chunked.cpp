@@ -204,8 +204,9 @@ ChunkBoundaryBound chunk_boundary_bound(const UnitConfig& cfg, bool uniform_fact
   // F: reset to the first acceptance of an empty unit: the first control points (fill), the
   // first vertex's dependence chain, its last result, retirement, acceptance.
   const double first_vertex = p.fill_cycles + p.chain_span + cfg.int_latency + 2;
-  // The CPG's own cycles per patch (C + 1 dedicated; the compute steps and two more in the gpe mapping).
-  const double per_patch_cpg = p.cpg * p.patch_vertices;
+  // One CPG copy's cycles per patch (C + 1 dedicated; the compute steps and two more in the gpe
+  // mapping): a patch's own control points never come sooner, however many copies there are.
+  const double per_patch_cpg = p.cpg * p.patch_vertices * cfg.cpg.copies;
   ChunkBoundaryBound b;
   b.longer = static_cast<std::uint64_t>(std::ceil(uniform_factors ? first_vertex : first_vertex + 2 * per_patch_cpg));
   // The single run's geometry engine is busy K - 1 cycles after the last vertex before the

@@ -83,6 +83,7 @@ ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, c
 struct CpgVariant {
   int lanes = 1;       // edge lanes: 1 walks the three edges in turn, 3 computes them at once
   int digit_bits = 1;  // r: quotient / root bits the dividers and the square root retire a cycle
+  int copies = 1;      // CPGs taking successive triangles round robin (sim/blocks/cpg.hpp CpgArray)
   bool operator==(const CpgVariant&) const = default;
 };
 inline constexpr int kMaxCpgDigitBits = 32;

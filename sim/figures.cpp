@@ -54,9 +54,10 @@ std::string bottleneck(const SimResult& r) {
   } else if (starved_by_cpg == top) {
     std::snprintf(buf, sizeof buf,
                   "CPG: TE starved by CPG in %.1f%% of the late vertex intervals (GPE waited %.1f%% of cycles; "
-                  "%s mapping, C = %d cycles per triangle, %.4g vertices per patch)",
+                  "%s mapping, C = %d cycles per triangle on %d cop%s, %.4g vertices per patch)",
                   100 * starved_by_cpg / waited, 100 * ratio(r.gpe_waited, cycles),
-                  to_string(c.cpg_mapping).c_str(), r.cpg_cycles, ratio(r.factors.vertices, r.triangles));
+                  to_string(c.cpg_mapping).c_str(), r.cpg_cycles, c.cpg.copies, c.cpg.copies == 1 ? "y" : "ies",
+                  ratio(r.factors.vertices, r.triangles));
   } else if (int_limited == top) {
     std::snprintf(buf, sizeof buf,
                   "INT blocks: all %d busy with ready ops left in %.1f%% of the late vertex intervals "

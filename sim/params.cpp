@@ -8,6 +8,7 @@
 #include "model/normal_mode.hpp"
 #include "model/pattern.hpp"
 #include "sim/blocks/cp_buffer.hpp"
+#include "sim/blocks/cpg.hpp"
 #include "sim/blocks/int_blocks.hpp"
 #include "sim/blocks/te.hpp"
 #include "sim/cpg.hpp"
@@ -33,7 +34,7 @@ constexpr auto E = ParamKind::Environment;
 constexpr auto W = ParamKind::Workload;
 constexpr auto I = ParamType::Int;
 
-const std::array<ParamSpec, 19> kParams{{
+const std::array<ParamSpec, 20> kParams{{
     {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
      "tessellation factor: segments per edge, the same for every triangle of a run",
      TESSIM_PARAM_FIELD(tess_factor)},
@@ -68,6 +69,10 @@ const std::array<ParamSpec, 19> kParams{{
     {"cpg_digit_bits", "--cpg-digit-bits", "", "CpgDigitBits", "r", H, I, 1, kMaxCpgDigitBits, {}, "bits",
      "quotient / root bits the dedicated CPG's dividers and square root retire per cycle (radix 2^r)",
      TESSIM_PARAM_FIELD(cpg.digit_bits)},
+    {"cpg_copies", "--cpg-copies", "", "CpgCopies", "Mc", H, I, 1, CpgArray::kMaxCopies, {}, "CPGs",
+     "dedicated CPGs taking successive triangles round robin and writing them in order: one starts "
+     "every ceil((C + 1) / Mc) cycles",
+     TESSIM_PARAM_FIELD(cpg.copies)},
     {"cpg_tags", "--cpg-tags", "", "CpgTags", "", H, I, 0, 1, {}, "",
      "1: the CPG takes scalar tags and computes scalar-tagged PN control points; 0: plain PN",
      TESSIM_PARAM_FIELD(cpg_tags)},

@@ -50,6 +50,7 @@ std::string summary(const SimResult& r) {
                 c.format.coord_int_bits, c.format.coord_frac_bits, c.format.coord_width(), c.format.bary_bits,
                 to_string(c.cpg_mapping).c_str(), r.cpg_cycles);
   s << buf;
+  if (c.cpg.copies > 1) s << " on each of " << c.cpg.copies << " copies";
   if (c.cpg_tags)
     s << " + scalar tags (" << r.cpg_tag_cycles << " cycles over the run, "
       << ratio(r.cpg_tag_cycles, r.triangles) << " per triangle)";

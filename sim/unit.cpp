@@ -44,8 +44,8 @@ int cpg_counter_load(const HardwareConfig& cfg, NormalMode normals, int cpg_gpe_
 Unit::Unit(const HardwareConfig& cfg, NormalMode normals, int cpg_gpe_cycles)
     : hw_(checked(cfg, normals)),
       tri_fifo_(cfg.tri_fifo_depth),
-      cpg_(normals, cfg.format, cpg_counter_load(cfg, normals, cpg_gpe_cycles), cfg.cpg_mapping == CpgMapping::Gpe,
-           cfg.cpg_tags != 0, cfg.cpg),
+      cpg_(cfg.cpg.copies, normals, cfg.format, cpg_counter_load(cfg, normals, cpg_gpe_cycles),
+           cfg.cpg_mapping == CpgMapping::Gpe, cfg.cpg_tags != 0, cfg.cpg),
       buffers_(cfg.cp_buffers),
       te_(cfg.int_blocks, cfg.int_latency, cfg.te_contexts, normals, cfg.format),
       vtx_fifo_(cfg.vtx_fifo_depth),
@@ -78,14 +78,14 @@ void Unit::tick(const UnitInputs& in) {
   const bool retire = head_done && !vtx_fifo_.full();
   const bool point_available = buffers_.rd_full();
   const bool allocate = te_.can_allocate(point_available);
-  const CpgAction cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
+  const CpgArray::Actions cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
   const bool head_waiting = te_.head_waiting();
   const int issued = te_.schedule();  // from the ready masks as registered
 
   // ---- Statistics of the cycle, from the same registered state.
   const TeClass te = te_.classify(issued, head_waiting, head_done, vtx_fifo_.full(), point_available,
                                   cpg_.busy() || !tri_fifo_.empty());
-  const CpgClass cpg_class = CpgBlock::classify(cpg);
+  const CpgClass cpg_class = cpg_.classify(cpg);
   act_.cycle = counters_.cycles();
   counters_.count(issued, te, cpg_class,
                   (tri_push ? run_event(RunCounter::TrianglesIn) : 0) | (vtx_pop ? run_event(RunCounter::VerticesOut) : 0) |
@@ -93,8 +93,8 @@ void Unit::tick(const UnitInputs& in) {
   act_.ops_issued = issued;
   act_.te = te;
   act_.cpg = cpg_class;
-  act_.cpg_action = cpg;
-  act_.cpg_triangle = cpg == CpgAction::Accept ? tri_fifo_.front().id : cpg_.triangle_id();
+  act_.cpg_action = cpg_.summary(cpg);
+  act_.cpg_triangle = cpg_.summary_triangle(cpg, tri_fifo_.front().id);
   act_.tri_pushed = tri_push;
   act_.vtx_popped = vtx_pop;
   act_.allocated = allocate;
@@ -105,9 +105,10 @@ void Unit::tick(const UnitInputs& in) {
   // FIFOs' tail slots of the start of the cycle, so a simultaneous pop cannot collide.
   te_.commit(retire ? &vtx_fifo_.tail() : nullptr, allocate, buffers_, &act_.retired_vertex, &act_.allocated_vertex);
   vtx_fifo_.commit(retire, vtx_pop);
+  const bool tri_pop = cpg_.accepts(cpg);  // before the commit moves the accept pointer
   cpg_.commit(cpg, tri_fifo_.front(), buffers_);
   if (tri_push) tri_fifo_.tail() = in.tri;
-  tri_fifo_.commit(tri_push, cpg == CpgAction::Accept);
+  tri_fifo_.commit(tri_push, tri_pop);
 }
 
 std::uint64_t Unit::quiet_cycles(const UnitInputs& in) const {
@@ -125,8 +126,8 @@ std::uint64_t Unit::skip(std::uint64_t n, const UnitInputs& in, std::uint64_t is
   const bool point_available = buffers_.rd_full();
   const bool vtx_full = vtx_fifo_.full();
   const bool upstream_busy = cpg_.busy() || !tri_fifo_.empty();
-  const CpgAction cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
-  const CpgClass cpg_class = CpgBlock::classify(cpg);
+  const CpgArray::Actions cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
+  const CpgClass cpg_class = cpg_.classify(cpg);
   // A triangle offered in a quiet stretch is refused in each of its cycles (the TRI FIFO is full).
   const RunEvents events = in.tri_valid ? run_event(RunCounter::TriStalls) : 0;
   int issued = 0;
@@ -163,8 +164,8 @@ std::uint64_t Unit::skip(std::uint64_t n, const UnitInputs& in, std::uint64_t is
   act_.tri_pushed = act_.vtx_popped = act_.allocated = act_.retired = false;
   act_.te = te;
   act_.cpg = cpg_class;
-  act_.cpg_action = cpg;
-  act_.cpg_triangle = cpg_.triangle_id();  // a quiet stretch never accepts
+  act_.cpg_action = cpg_.summary(cpg);
+  act_.cpg_triangle = cpg_.summary_triangle(cpg, 0);  // a quiet stretch never accepts
   cpg_.commit_repeated(cpg, n);
   return n;
 }

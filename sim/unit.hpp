@@ -96,7 +96,7 @@ class Unit {
   // The blocks of rtl/tess_unit.sv, in data-flow order.
   HardwareConfig hw_;
   Fifo<TriangleFx> tri_fifo_;
-  CpgBlock cpg_;
+  CpgArray cpg_;
   ControlPointBuffer buffers_;
   Te te_;
   Fifo<VertexFx> vtx_fifo_;

@@ -7,8 +7,12 @@
 // engine (the counter is loaded with C and counts only cycles the GPE grants, cpg_step).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "sim/blocks/counter_registry.hpp"
 #include "sim/blocks/cp_buffer.hpp"
@@ -126,6 +130,121 @@ class CpgBlock {
   bool busy_ = false;
   int counter_ = 0;
   TriangleFx latch_;
+};
+
+// cpg_copies CPGs behind one TRI FIFO and one buffer write port (docs/microarchitecture.md §5,
+// "Several triangles in flight"): triangles go to the copies round robin (accept pointer), and
+// the copies write their control points in the same order (write pointer), so that patches
+// reach the buffers in input order. One copy computes a triangle in C + 1 cycles; M copies
+// start one every ceil((C + 1) / M) cycles. With one copy this is exactly CpgBlock.
+class CpgArray {
+ public:
+  static constexpr int kMaxCopies = 16;
+  // copies: HardwareConfig::cpg.copies, validated by the parameter table (sim/params.cpp);
+  // more than one needs the dedicated mapping (the GE-mapped CPG is one program on the GE).
+  CpgArray(int copies, NormalMode normals, const NumberFormat& format, int cycles, bool gpe_mapping, bool tags,
+           const CpgVariant& variant) {
+    if (copies < 1 || copies > kMaxCopies || (gpe_mapping && copies > 1))
+      throw std::invalid_argument("CpgArray: 1.." + std::to_string(kMaxCopies) + " copies, one on the GE mapping");
+    copies_.reserve(static_cast<std::size_t>(copies));  // once: no allocation per cycle
+    for (int i = 0; i < copies; ++i) copies_.emplace_back(normals, format, cycles, gpe_mapping, tags, variant);
+  }
+
+  void reset() {
+    for (CpgBlock& c : copies_) c.reset();
+    accept_ = write_ = 0;
+  }
+
+  // Every copy's action this cycle: only the copy at the accept pointer sees the TRI FIFO's
+  // head, only the copy at the write pointer sees buffer[wr_ptr] EMPTY.
+  struct Actions {
+    std::array<CpgAction, kMaxCopies> of{};
+  };
+  Actions decide(bool tri_available, bool wr_empty, bool cpg_step) const {
+    Actions a;
+    for (int i = 0; i < count(); ++i)
+      a.of[idx(i)] = copies_[idx(i)].decide(tri_available && i == accept_, wr_empty && i == write_, cpg_step);
+    return a;
+  }
+  bool accepts(const Actions& a) const { return a.of[idx(accept_)] == CpgAction::Accept; }
+
+  // The class of the cycle for the statistics: busy if any copy accepts, computes or writes,
+  // else blocked if any holds finished control points, else waiting for the GE, else idle.
+  CpgClass classify(const Actions& a) const {
+    bool blocked = false, wait = false;
+    for (int i = 0; i < count(); ++i) {
+      const CpgClass c = CpgBlock::classify(a.of[idx(i)]);
+      if (c == CpgClass::Busy) return CpgClass::Busy;
+      blocked |= c == CpgClass::Blocked;
+      wait |= c == CpgClass::WaitGpe;
+    }
+    return blocked ? CpgClass::Blocked : wait ? CpgClass::WaitGpe : CpgClass::Idle;
+  }
+  // One action and triangle for traces, as the statistics class ranks them: a write, else an
+  // accept, else a computing copy, else one waiting for the GE, blocked, idle; among copies
+  // with the same action the oldest triangle's (from the write pointer on). With one copy, that
+  // copy's action.
+  int summary_copy(const Actions& a) const {
+    static constexpr auto rank = [](CpgAction x) {
+      switch (x) {
+        case CpgAction::Write: return 5;
+        case CpgAction::Accept: return 4;
+        case CpgAction::Compute: return 3;
+        case CpgAction::WaitGpe: return 2;
+        case CpgAction::Blocked: return 1;
+        default: return 0;
+      }
+    };
+    int best = write_;
+    for (int k = 1, i = next(write_); k < count(); ++k, i = next(i))
+      if (rank(a.of[idx(i)]) > rank(a.of[idx(best)])) best = i;
+    return best;
+  }
+  CpgAction summary(const Actions& a) const { return a.of[idx(summary_copy(a))]; }
+  std::uint32_t summary_triangle(const Actions& a, std::uint32_t tri_front_id) const {
+    const int c = summary_copy(a);
+    return a.of[idx(c)] == CpgAction::Accept ? tri_front_id : copies_[idx(c)].triangle_id();
+  }
+
+  // Cycles in a row the actions repeat while only the countdowns move (CpgBlock::repeats).
+  std::uint64_t repeats(const Actions& a) const {
+    std::uint64_t n = CpgBlock::kForever;
+    for (int i = 0; i < count(); ++i) n = std::min(n, copies_[idx(i)].repeats(a.of[idx(i)]));
+    return n;
+  }
+  void commit_repeated(const Actions& a, std::uint64_t n) {
+    for (int i = 0; i < count(); ++i) copies_[idx(i)].commit_repeated(a.of[idx(i)], n);
+  }
+  // The clock edge of every copy; the pointers step past the copy that accepted or wrote.
+  void commit(const Actions& a, const TriangleFx& tri_front, ControlPointBuffer& buffers) {
+    const bool accepted = accepts(a), wrote = a.of[idx(write_)] == CpgAction::Write;
+    for (int i = 0; i < count(); ++i) copies_[idx(i)].commit(a.of[idx(i)], tri_front, buffers);
+    if (accepted) accept_ = next(accept_);
+    if (wrote) write_ = next(write_);
+  }
+
+  int count() const { return static_cast<int>(copies_.size()); }
+  bool busy() const {
+    for (const CpgBlock& c : copies_)
+      if (c.busy()) return true;
+    return false;
+  }
+  bool computing() const { return copies_[0].computing(); }  // GE mapping: the one copy
+  int cycles() const { return copies_[0].cycles(); }
+  std::uint64_t tag_cycles() const {
+    std::uint64_t n = 0;
+    for (const CpgBlock& c : copies_) n += c.tag_cycles();
+    return n;
+  }
+  int accept_pointer() const { return accept_; }
+  int write_pointer() const { return write_; }
+
+ private:
+  static std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+  int next(int i) const { return i + 1 == count() ? 0 : i + 1; }
+
+  std::vector<CpgBlock> copies_;
+  int accept_ = 0, write_ = 0;
 };
 
 }  // namespace tessim::sim

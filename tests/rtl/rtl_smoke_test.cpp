@@ -223,8 +223,10 @@ void expect_counters_consistent(const RunResult& r, const rtl::RtlUnit& unit, st
   EXPECT_EQ(ops, r.vertices.size() * static_cast<std::uint64_t>(ops_per_vertex(mode))) << what;
   EXPECT_GE(k.int_busy[0], k.te[TeClass::Busy] + k.te[TeClass::IntLimited]) << what;
   EXPECT_GE(k.int_busy[unit.int_blocks() - 1], k.te[TeClass::IntLimited]) << what;
+  // Each triangle keeps one CPG copy busy for C + 1 cycles; at most Mc copies are busy in a cycle.
   EXPECT_GE(k.cpg[sim::CpgClass::Busy],
-            triangles * static_cast<std::uint64_t>(sim::cpg_cycles(mode, kFormat, unit.config().cpg) + 1))
+            triangles * static_cast<std::uint64_t>(sim::cpg_cycles(mode, kFormat, unit.config().cpg) + 1) /
+                static_cast<std::uint64_t>(unit.config().cpg.copies))
       << what;
 }
 
@@ -250,10 +252,10 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   EXPECT_EQ(lat3->int_blocks(), 3);
   EXPECT_EQ(lat3->contexts(), 6);
   EXPECT_EQ(lat3->int_latency(), 3);
-  EXPECT_EQ(lat3->config().cpg, (sim::CpgVariant{3, 5}));
-  EXPECT_EQ(rtl::make_rtl_unit("n1_r4")->config().cpg, (sim::CpgVariant{1, 4}));
-  EXPECT_EQ(rtl::make_rtl_unit("n2_l3r8")->config().cpg, (sim::CpgVariant{3, 8}));
-  EXPECT_EQ(rtl::make_rtl_unit("n4_l3r24")->config().cpg, (sim::CpgVariant{3, 24}));
+  EXPECT_EQ(lat3->config().cpg, (sim::CpgVariant{3, 5, 2}));
+  EXPECT_EQ(rtl::make_rtl_unit("n1_r4")->config().cpg, (sim::CpgVariant{1, 4, 3}));
+  EXPECT_EQ(rtl::make_rtl_unit("n2_l3r8")->config().cpg, (sim::CpgVariant{3, 8, 2}));
+  EXPECT_EQ(rtl::make_rtl_unit("n4_l3r24")->config().cpg, (sim::CpgVariant{3, 24, 5}));
   // The free parameters away from their defaults: FIFO depths and widths.
   const sim::HardwareConfig w28 = rtl::make_rtl_unit("n2_w28b20")->config();
   EXPECT_EQ(w28.tri_fifo_depth, 3);
@@ -273,7 +275,7 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   sim::HardwareConfig hw;
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), "n2");
   EXPECT_EQ(rtl::find_rtl_variant(hw, true), "n2_verif");
-  hw.cpg = {3, 8};
+  hw.cpg = {3, 8, 2};
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), std::nullopt) << "n2_l3r8 takes scalar tags";
   hw.cpg_tags = 1;
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), "n2_l3r8");

@@ -216,6 +216,14 @@ TEST(UnitConfigCheck, CpgVariantOutsideTheDesignSpaceIsRejected) {
   EXPECT_EQ(reason(c), "");
   c.cpg_mapping = CpgMapping::Gpe;
   EXPECT_NE(reason(c).find("cpg_mapping gpe"), std::string::npos) << reason(c);
+  c = UnitConfig{};
+  c.cpg.copies = 2;
+  EXPECT_EQ(reason(c), "");
+  c.cpg_mapping = CpgMapping::Gpe;  // the GE-mapped CPG is one program on the GE
+  EXPECT_NE(reason(c).find("cpg_copies"), std::string::npos) << reason(c);
+  c = UnitConfig{};
+  c.cpg.copies = 17;
+  EXPECT_NE(reason(c).find("cfg.json: cpg_copies: value 17"), std::string::npos) << reason(c);
 }
 
 TEST(UnitTimeline, TwoBlocksFourContexts) {
@@ -535,6 +543,63 @@ TEST(UnitBuffers, CpgRunsAtMostNbPatchesAheadAndVerticesDoNotDependOnNb) {
       // The fast-forwarded run takes the same cycles.
       EXPECT_EQ(simulate(mesh, cfg).unit.cycles, r.unit.cycles);
     }
+  }
+}
+
+// Copies of the CPG (docs/microarchitecture.md §5): triangles go to Mc copies in turn and their
+// control points reach the buffers in input order. At most Mc triangles are in the CPG at once;
+// the copies change when vertices come out, never what they are; a CPG-bound run (L = 1, a GE
+// that takes a vertex a cycle) starts a triangle every (C + 1) / Mc cycles, as the analytic
+// bound says, until the GE's rate is reached.
+TEST(UnitCpgCopies, TrianglesInTurnPatchesInOrderOneStartEveryCPlusOneOverMc) {
+  struct InFlight : CycleObserver {
+    std::uint64_t pushed = 0, writes = 0, max_in_cpg = 0;
+    std::int64_t last_written = -1;
+    bool in_order = true;
+    bool on_cycle(const Unit& unit, const GpeCycle&) override {
+      const CycleActivity& a = unit.activity();
+      if (a.tri_pushed) ++pushed;
+      if (a.cpg_action == CpgAction::Write) {
+        ++writes;
+        in_order = in_order && static_cast<std::int64_t>(a.cpg_triangle) == last_written + 1;
+        last_written = a.cpg_triangle;
+      }
+      // Accepted (pushed and gone from the TRI FIFO) and not yet written.
+      const std::uint64_t accepted = pushed - static_cast<std::uint64_t>(unit.tri_fifo_count());
+      max_in_cpg = std::max(max_in_cpg, accepted - writes);
+      return true;
+    }
+  };
+  const Mesh mesh = bumpy_sphere(1);
+  std::vector<VertexFx> reference;
+  std::uint64_t previous_cycles = 0;
+  for (int copies = 1; copies <= 6; ++copies) {
+    SCOPED_TRACE("Mc " + std::to_string(copies));
+    UnitConfig cfg = config(14, 8, 1, 1, 1);
+    cfg.cpg = CpgVariant{3, cfg.format.coord_width(), copies};  // C = 14 quadratic
+    cfg.cp_buffers = 8;
+    cfg.validate("test");
+    InFlight seen;
+    SimHooks hooks;
+    hooks.observers.push_back(&seen);
+    std::vector<VertexFx> out;
+    hooks.on_vertex = [&](const VertexFx& v) { out.push_back(v); };
+    const SimResult r = simulate(mesh, cfg, hooks);
+    ASSERT_EQ(seen.writes, mesh.triangle_count());
+    EXPECT_TRUE(seen.in_order) << "control points written out of input order";
+    EXPECT_EQ(seen.max_in_cpg, static_cast<std::uint64_t>(copies)) << "every copy busy, never more";
+    if (copies == 1) {
+      reference = out;
+    } else {
+      EXPECT_EQ(out, reference);
+      EXPECT_LE(r.unit.cycles, previous_cycles) << "a copy more never slows the unit";
+    }
+    previous_cycles = r.unit.cycles;
+    // One triangle every (C + 1) / Mc cycles while that is slower than the GE's 3 cycles a patch.
+    const double per_triangle = std::max(15.0 / copies, 3.0);
+    const double expected = per_triangle * static_cast<double>(mesh.triangle_count());
+    EXPECT_NEAR(static_cast<double>(r.unit.cycles), expected, 40.0) << "fill and drain only";
+    EXPECT_EQ(simulate(mesh, cfg).unit.cycles, r.unit.cycles) << "fast-forward";
   }
 }
 
