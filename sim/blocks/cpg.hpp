@@ -143,37 +143,52 @@ class CpgArray {
   // copies: HardwareConfig::cpg.copies, validated by the parameter table (sim/params.cpp);
   // more than one needs the dedicated mapping (the GE-mapped CPG is one program on the GE).
   CpgArray(int copies, NormalMode normals, const NumberFormat& format, int cycles, bool gpe_mapping, bool tags,
-           const CpgVariant& variant) {
+           const CpgVariant& variant)
+      : first_(normals, format, cycles, gpe_mapping, tags, variant), count_(copies) {
     if (copies < 1 || copies > kMaxCopies || (gpe_mapping && copies > 1))
       throw std::invalid_argument("CpgArray: 1.." + std::to_string(kMaxCopies) + " copies, one on the GE mapping");
-    copies_.reserve(static_cast<std::size_t>(copies));  // once: no allocation per cycle
-    for (int i = 0; i < copies; ++i) copies_.emplace_back(normals, format, cycles, gpe_mapping, tags, variant);
+    rest_.reserve(static_cast<std::size_t>(copies - 1));  // once: no allocation per cycle
+    for (int i = 1; i < copies; ++i) rest_.emplace_back(normals, format, cycles, gpe_mapping, tags, variant);
   }
 
   void reset() {
-    for (CpgBlock& c : copies_) c.reset();
+    first_.reset();
+    for (CpgBlock& c : rest_) c.reset();
     accept_ = write_ = 0;
   }
 
   // Every copy's action this cycle: only the copy at the accept pointer sees the TRI FIFO's
-  // head, only the copy at the write pointer sees buffer[wr_ptr] EMPTY.
-  struct Actions {
-    std::array<CpgAction, kMaxCopies> of{};
+  // head, only the copy at the write pointer sees buffer[wr_ptr] EMPTY. Packed four bits a copy
+  // into one word, so that the actions stay in a register (an array in memory, written a byte
+  // at a time and read back whole, stalled the store forwarding in every cycle).
+  class Actions {
+   public:
+    CpgAction of(int copy) const { return static_cast<CpgAction>((bits_ >> (4 * copy)) & 0xF); }
+    void set(int copy, CpgAction a) { bits_ |= static_cast<std::uint64_t>(a) << (4 * copy); }
+
+   private:
+    std::uint64_t bits_ = 0;
   };
+  static_assert(kMaxCopies * 4 <= 64, "four bits per copy in one word");
   Actions decide(bool tri_available, bool wr_empty, bool cpg_step) const {
     Actions a;
+    if (single()) {
+      a.set(0, first_.decide(tri_available, wr_empty, cpg_step));
+      return a;
+    }
     for (int i = 0; i < count(); ++i)
-      a.of[idx(i)] = copies_[idx(i)].decide(tri_available && i == accept_, wr_empty && i == write_, cpg_step);
+      a.set(i, copy(i).decide(tri_available && i == accept_, wr_empty && i == write_, cpg_step));
     return a;
   }
-  bool accepts(const Actions& a) const { return a.of[idx(accept_)] == CpgAction::Accept; }
+  bool accepts(const Actions& a) const { return a.of(accept_) == CpgAction::Accept; }
 
   // The class of the cycle for the statistics: busy if any copy accepts, computes or writes,
   // else blocked if any holds finished control points, else waiting for the GE, else idle.
   CpgClass classify(const Actions& a) const {
+    if (single()) return CpgBlock::classify(a.of(0));
     bool blocked = false, wait = false;
     for (int i = 0; i < count(); ++i) {
-      const CpgClass c = CpgBlock::classify(a.of[idx(i)]);
+      const CpgClass c = CpgBlock::classify(a.of(i));
       if (c == CpgClass::Busy) return CpgClass::Busy;
       blocked |= c == CpgClass::Blocked;
       wait |= c == CpgClass::WaitGpe;
@@ -185,6 +200,7 @@ class CpgArray {
   // with the same action the oldest triangle's (from the write pointer on). With one copy, that
   // copy's action.
   int summary_copy(const Actions& a) const {
+    if (single()) return 0;
     static constexpr auto rank = [](CpgAction x) {
       switch (x) {
         case CpgAction::Write: return 5;
@@ -197,43 +213,48 @@ class CpgArray {
     };
     int best = write_;
     for (int k = 1, i = next(write_); k < count(); ++k, i = next(i))
-      if (rank(a.of[idx(i)]) > rank(a.of[idx(best)])) best = i;
+      if (rank(a.of(i)) > rank(a.of(best))) best = i;
     return best;
   }
-  CpgAction summary(const Actions& a) const { return a.of[idx(summary_copy(a))]; }
+  CpgAction summary(const Actions& a) const { return a.of(summary_copy(a)); }
   std::uint32_t summary_triangle(const Actions& a, std::uint32_t tri_front_id) const {
     const int c = summary_copy(a);
-    return a.of[idx(c)] == CpgAction::Accept ? tri_front_id : copies_[idx(c)].triangle_id();
+    return a.of(c) == CpgAction::Accept ? tri_front_id : copy(c).triangle_id();
   }
 
   // Cycles in a row the actions repeat while only the countdowns move (CpgBlock::repeats).
   std::uint64_t repeats(const Actions& a) const {
+    if (single()) return first_.repeats(a.of(0));
     std::uint64_t n = CpgBlock::kForever;
-    for (int i = 0; i < count(); ++i) n = std::min(n, copies_[idx(i)].repeats(a.of[idx(i)]));
+    for (int i = 0; i < count(); ++i) n = std::min(n, copy(i).repeats(a.of(i)));
     return n;
   }
   void commit_repeated(const Actions& a, std::uint64_t n) {
-    for (int i = 0; i < count(); ++i) copies_[idx(i)].commit_repeated(a.of[idx(i)], n);
+    if (single()) return first_.commit_repeated(a.of(0), n);
+    for (int i = 0; i < count(); ++i) copy(i).commit_repeated(a.of(i), n);
   }
   // The clock edge of every copy; the pointers step past the copy that accepted or wrote.
   void commit(const Actions& a, const TriangleFx& tri_front, ControlPointBuffer& buffers) {
-    const bool accepted = accepts(a), wrote = a.of[idx(write_)] == CpgAction::Write;
-    for (int i = 0; i < count(); ++i) copies_[idx(i)].commit(a.of[idx(i)], tri_front, buffers);
+    if (single()) return first_.commit(a.of(0), tri_front, buffers);  // the pointers stay 0
+    const bool accepted = accepts(a), wrote = a.of(write_) == CpgAction::Write;
+    for (int i = 0; i < count(); ++i) copy(i).commit(a.of(i), tri_front, buffers);
     if (accepted) accept_ = next(accept_);
     if (wrote) write_ = next(write_);
   }
 
-  int count() const { return static_cast<int>(copies_.size()); }
+  int count() const { return count_; }
+  bool single() const { return count_ == 1; }
   bool busy() const {
-    for (const CpgBlock& c : copies_)
+    if (first_.busy()) return true;
+    for (const CpgBlock& c : rest_)
       if (c.busy()) return true;
     return false;
   }
-  bool computing() const { return copies_[0].computing(); }  // GE mapping: the one copy
-  int cycles() const { return copies_[0].cycles(); }
+  bool computing() const { return first_.computing(); }  // GE mapping: the one copy
+  int cycles() const { return first_.cycles(); }
   std::uint64_t tag_cycles() const {
-    std::uint64_t n = 0;
-    for (const CpgBlock& c : copies_) n += c.tag_cycles();
+    std::uint64_t n = first_.tag_cycles();
+    for (const CpgBlock& c : rest_) n += c.tag_cycles();
     return n;
   }
   int accept_pointer() const { return accept_; }
@@ -241,9 +262,14 @@ class CpgArray {
 
  private:
   static std::size_t idx(int i) { return static_cast<std::size_t>(i); }
+  // Copy 0 lives inline, so that the default single CPG costs no indirection.
+  const CpgBlock& copy(int i) const { return i == 0 ? first_ : rest_[idx(i - 1)]; }
+  CpgBlock& copy(int i) { return i == 0 ? first_ : rest_[idx(i - 1)]; }
   int next(int i) const { return i + 1 == count() ? 0 : i + 1; }
 
-  std::vector<CpgBlock> copies_;
+  CpgBlock first_;
+  std::vector<CpgBlock> rest_;
+  int count_;
   int accept_ = 0, write_ = 0;
 };
 
