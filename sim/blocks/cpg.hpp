@@ -257,8 +257,6 @@ class CpgArray {
     for (const CpgBlock& c : rest_) n += c.tag_cycles();
     return n;
   }
-  int accept_pointer() const { return accept_; }
-  int write_pointer() const { return write_; }
 
  private:
   static std::size_t idx(int i) { return static_cast<std::size_t>(i); }
