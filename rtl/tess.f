@@ -11,7 +11,6 @@ tess_cpg_edge.sv
 tess_cpg_tag.sv
 tess_div.sv
 tess_dpg.sv
-tess_dpg_place.sv
 tess_fifo.sv
 tess_fsu.sv
 tess_fsu_edge.sv

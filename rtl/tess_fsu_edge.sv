@@ -2,13 +2,14 @@
 // how a D3D11 factor spreads its points along a unit edge. From the half factor
 // H = (F + 2^-16) / 2 (plus 1/2 when odd) come the points per half edge ceil(H), the split
 // point (ruler order: the top bit of floor(H) cleared), the segment counts of floor(H) and
-// ceil(H) and their 16.16 reciprocals from a 64-entry table, and the blend's two weights
-// R(n_floor)(1 - phi), R(n_ceil) phi, so that a point costs the DPG two small multiplies.
+// ceil(H) and their 16.16 reciprocals from a 64-entry table, and the blend's weights
+// fw = R(n_floor)(1 - phi), cw = R(n_ceil) phi, kept as cw and fw + cw: the DPG steps the blend
+// i' fw + i cw of consecutive points by fw + cw, or by cw where i' stays (tess_dpg).
 //
-// Two stages of one cycle each, so that one setup takes a new factor every cycle (tess_fsu):
-// the edge's shape and its two reciprocals come from the factor of this cycle, the blend
-// weights from the reciprocals registered in the cycle before (the 17 x 17-bit products would
-// otherwise sit behind the table, one path of about 120 logic levels).
+// Three stages of one cycle each, so that one setup takes a new factor every cycle (tess_fsu)
+// and each fits the depth budget (docs/rtl.md): the edge's shape and its two reciprocals come
+// from the factor of this cycle, the weights' 17 x 17-bit products from the reciprocals
+// registered in the cycle before, their sum a cycle later.
 module tess_fsu_edge (
   input  logic                         clk_i,
   input  logic [tess_pkg::FixBits-1:0] factor_i,      // 16.16, 1..64
@@ -17,8 +18,8 @@ module tess_fsu_edge (
   output logic [6:0]                   points_o,
   output logic [5:0]                   split_o,
   output logic [5:0]                   half_points_o,
-  // The blend weights of the previous cycle's factor_i
-  output logic [32:0]                  floor_weight_o,
+  // The blend weights of the factor_i two cycles before
+  output logic [33:0]                  sum_weight_o,   // fw + cw
   output logic [32:0]                  ceil_weight_o
 );
 
@@ -55,16 +56,20 @@ module tess_fsu_edge (
   assign floor_segments = {floor_int, 1'b0} - 7'(odd_i);
   assign ceil_segments  = {half_points, 1'b0} - 7'(odd_i);
 
-  // R(n) = round(2^16 / n) for n = 1..64 (0 otherwise: never used).
+  // R(n) = round(2^16 / n) for n = 1..64 (0 otherwise: never used), a constant table read by the
+  // segment count: Yosys builds a 7-level multiplexer tree over the constants (a comparison per
+  // entry ORed together maps to a path three times as deep).
+  localparam int unsigned RecipW = 17;
+  function automatic logic [128*RecipW-1:0] recip_table();
+    logic [128*RecipW-1:0] t;
+    t = '0;
+    for (int n = 1; n <= tess_pkg::MaxFactor; n++) t[n*RecipW +: RecipW] = RecipW'((32'h10000 + n / 2) / n);
+    recip_table = t;
+  endfunction
+  localparam logic [128*RecipW-1:0] RecipTable = recip_table();
   logic [16:0] inv_floor, inv_ceil;
-  always_comb begin
-    inv_floor = '0;
-    inv_ceil  = '0;
-    for (int n = 1; n <= tess_pkg::MaxFactor; n++) begin
-      if (floor_segments == 7'(n)) inv_floor = 17'((32'h10000 + n / 2) / n);
-      if (ceil_segments == 7'(n)) inv_ceil = 17'((32'h10000 + n / 2) / n);
-    end
-  end
+  assign inv_floor = RecipTable[floor_segments*RecipW +: RecipW];
+  assign inv_ceil  = RecipTable[ceil_segments*RecipW +: RecipW];
 
   assign points_o      = {half_points, 1'b0} + 7'(!odd_i);
   assign split_o       = split;
@@ -81,9 +86,18 @@ module tess_fsu_edge (
   end
 
   logic [16:0] one_minus_phi;
-  assign one_minus_phi  = 17'h10000 - {1'b0, phi_q};
-  assign floor_weight_o = 33'(inv_floor_q) * 33'(one_minus_phi);
-  assign ceil_weight_o  = 33'(inv_ceil_q) * 33'(phi_q);
+  logic [32:0] floor_weight, ceil_weight, floor_weight_q, ceil_weight_q;
+  assign one_minus_phi = 17'h10000 - {1'b0, phi_q};
+  assign floor_weight  = 33'(inv_floor_q) * 33'(one_minus_phi);
+  assign ceil_weight   = 33'(inv_ceil_q) * 33'(phi_q);
+
+  // ------------------------------------------------------------------ stage 3: their sum
+  always_ff @(posedge clk_i) begin
+    floor_weight_q <= floor_weight;
+    ceil_weight_q  <= ceil_weight;
+  end
+  assign ceil_weight_o = ceil_weight_q;
+  assign sum_weight_o  = 34'(floor_weight_q) + 34'(ceil_weight_q);
 
   // ceil_half's fraction is floor_half's (zero); bit 22 is never set (H <= 33); the split
   // takes the cleared value's low five bits (floor(H) <= 32).

@@ -4,8 +4,10 @@
 //
 // Latency (docs/microarchitecture.md §8): an op issued in cycle t leaves on res_o in cycle
 // t + Latency - 1, so that the TE writes it at the end of that cycle. With Latency = 1 the
-// block is combinational. With Latency >= 2 the first register sits between the multipliers
-// and the adder (the natural cut); any further registers delay the rounded result.
+// block is combinational, behind the TE's scheduler and operand select in one path. With
+// Latency >= 2 the first register takes the selected operands (the scheduler and the 45-level
+// multiply-add then sit in different cycles: docs/rtl.md, Depth budget); with Latency >= 3 the
+// second sits between the multipliers and the adder; any further registers delay the result.
 module tess_int #(
   parameter int unsigned CoordWidth = 24,               // W
   parameter int unsigned BaryBits   = tess_pkg::BaryBits,  // B
@@ -32,34 +34,90 @@ module tess_int #(
   localparam int unsigned ProdW = BaryBits + 2 + W;  // (B+2)-bit signed weight x W-bit operand
   localparam int unsigned SumW  = ProdW + 2;
 
+  // Optional input register (Latency >= 2): the TE's operand select ends in the issue cycle, the
+  // multiply-add has the next cycle to itself.
+  logic                    in_valid;
+  logic [TagWidth-1:0]     in_tag;
+  logic [BaryBits:0]       in_w, in_u, in_v;
+  logic [3*CoordWidth-1:0] in_a, in_b, in_c;
+  if (Latency >= 2) begin : g_in_reg
+    logic                    valid_d, valid_q;
+    logic [TagWidth-1:0]     tag_d, tag_q;
+    logic [BaryBits:0]       w_d, w_q, u_d, u_q, v_d, v_q;
+    logic [3*CoordWidth-1:0] a_d, a_q, b_d, b_q, c_d, c_q;
+    assign valid_d = valid_i;
+    assign tag_d   = tag_i;
+    assign w_d     = w_i;
+    assign u_d     = u_i;
+    assign v_d     = v_i;
+    assign a_d     = a_i;
+    assign b_d     = b_i;
+    assign c_d     = c_i;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        valid_q <= 1'b0;
+      end else begin
+        valid_q <= valid_d;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      tag_q <= tag_d;
+      w_q   <= w_d;
+      u_q   <= u_d;
+      v_q   <= v_d;
+      a_q   <= a_d;
+      b_q   <= b_d;
+      c_q   <= c_d;
+    end
+    assign in_valid = valid_q;
+    assign in_tag   = tag_q;
+    assign in_w     = w_q;
+    assign in_u     = u_q;
+    assign in_v     = v_q;
+    assign in_a     = a_q;
+    assign in_b     = b_q;
+    assign in_c     = c_q;
+  end else begin : g_in_comb
+    logic unused_clk;
+    assign unused_clk = clk_i ^ rst_ni;
+    assign in_valid = valid_i;
+    assign in_tag   = tag_i;
+    assign in_w     = w_i;
+    assign in_u     = u_i;
+    assign in_v     = v_i;
+    assign in_a     = a_i;
+    assign in_b     = b_i;
+    assign in_c     = c_i;
+  end
+
   // Stage 1: nine exact products (weights are unsigned, so they get a zero sign bit).
   (* mem2reg *) logic signed [BaryBits+1:0] weight [3];
   (* mem2reg *) logic signed [W-1:0]        operand [3][3];  // [component][A, B, C]
   (* mem2reg *) logic signed [ProdW-1:0]    prod_s [3][3];
   (* mem2reg *) logic [ProdW-1:0]           prod [3][3];
-  assign weight[0] = $signed({1'b0, w_i});
-  assign weight[1] = $signed({1'b0, u_i});
-  assign weight[2] = $signed({1'b0, v_i});
+  assign weight[0] = $signed({1'b0, in_w});
+  assign weight[1] = $signed({1'b0, in_u});
+  assign weight[2] = $signed({1'b0, in_v});
   for (genvar c = 0; c < 3; c++) begin : g_comp
-    assign operand[c][0] = $signed(a_i[c*W +: W]);
-    assign operand[c][1] = $signed(b_i[c*W +: W]);
-    assign operand[c][2] = $signed(c_i[c*W +: W]);
+    assign operand[c][0] = $signed(in_a[c*W +: W]);
+    assign operand[c][1] = $signed(in_b[c*W +: W]);
+    assign operand[c][2] = $signed(in_c[c*W +: W]);
     for (genvar o = 0; o < 3; o++) begin : g_op
       assign prod_s[c][o] = weight[o] * operand[c][o];
       assign prod[c][o]   = prod_s[c][o];
     end
   end
 
-  // Optional pipeline register after the multipliers.
+  // Optional pipeline register after the multipliers (Latency >= 3).
   (* mem2reg *) logic [ProdW-1:0]    sum_in [3][3];
   logic                stage_valid;
   logic [TagWidth-1:0] stage_tag;
-  if (Latency >= 2) begin : g_mul_reg
+  if (Latency >= 3) begin : g_mul_reg
     (* mem2reg *) logic [ProdW-1:0] prod_d [3][3], prod_q [3][3];
     logic                valid_d, valid_q;
     logic [TagWidth-1:0] tag_d, tag_q;
-    assign valid_d = valid_i;
-    assign tag_d   = tag_i;
+    assign valid_d = in_valid;
+    assign tag_d   = in_tag;
     for (genvar c = 0; c < 3; c++) begin : g_prod_d
       for (genvar o = 0; o < 3; o++) begin : g_o
         assign prod_d[c][o] = prod[c][o];
@@ -91,10 +149,8 @@ module tess_int #(
         assign sum_in[c][o] = prod[c][o];
       end
     end
-    logic unused_clk;
-    assign unused_clk = clk_i ^ rst_ni;
-    assign stage_valid = valid_i;
-    assign stage_tag   = tag_i;
+    assign stage_valid = in_valid;
+    assign stage_tag   = in_tag;
   end
 
   // Stage 2: exact sum, one rounding half up (InjectBug 1: the +half is dropped).
@@ -110,9 +166,9 @@ module tess_int #(
     assign res[c*W +: W] = sum[c][BaryBits +: W];
   end
 
-  // Further Latency - 2 registers delay the result.
-  if (Latency >= 3) begin : g_out_regs
-    localparam int unsigned Extra = Latency - 2;
+  // Further Latency - 3 registers delay the result.
+  if (Latency >= 4) begin : g_out_regs
+    localparam int unsigned Extra = Latency - 3;
     (* mem2reg *) logic                valid_d [Extra], valid_q [Extra];
     (* mem2reg *) logic [TagWidth-1:0] tag_d [Extra], tag_q [Extra];
     (* mem2reg *) logic [3*W-1:0]      res_d [Extra], res_q [Extra];

@@ -44,9 +44,9 @@ package tess_pkg;
   localparam int unsigned IndexBits  = 12;    // a point's index in its patch (< 3169)
   // The triangle's pattern descriptor: {factor[3] (inner), factor[2..0] (outer), pattern, L}.
   localparam int unsigned DescBits   = FactorBits + PatternBits + 4 * FixBits;
-  // One edge's setup (tess_fsu_edge): {points 7, ceil weight 33, floor weight 33, split 6,
-  // half points 6, odd 1}.
-  localparam int unsigned EdgeBits   = 86;
+  // One edge's setup (tess_fsu_edge): {points 7, ceil weight 33, sum of the floor and ceil
+  // weights 34, split 6, half points 6, odd 1}.
+  localparam int unsigned EdgeBits   = 87;
   // A patch's setup (tess_fsu): {point count, inner points 7, inner edge, outer edges 2, 1, 0}.
   localparam int unsigned SetupBits  = 4 * EdgeBits + 7 + IndexBits;
   // What the control-point buffer keeps of a patch besides its nets: {setup, pattern, L}.

@@ -108,54 +108,125 @@ module tess_te #(
   assign drain_o = alloc && dpg_last;
 
   // ------------------------------------------------------------------ scheduler
-  // Candidate (age a, op o) has index a * 14 + o: the lexicographic priority order.
+  // Candidate (age a, op o) has index a * 14 + o: the lexicographic priority order. The ready
+  // mask is registered: it is computed at the end of each cycle from the next state (queue
+  // pointers, issued and done bits), so that a cycle starts from it and the scheduler, the
+  // operand select and the INT blocks' input register share one path of the depth budget
+  // (docs/rtl.md). It equals the mask of the current state in every cycle: a retiming.
   (* mem2reg *) logic [IdxW-1:0]   age_ctx [V];      // physical context of age a
-  logic [NumCand-1:0] ready;
+  (* mem2reg *) logic [IdxW-1:0]   age_ctx_d [V];    // ... in the next cycle
+  (* mem2reg *) logic [NumOps-1:0] issued_nx [V];    // issued and done bits of the next cycle
+  (* mem2reg *) logic [NumOps-1:0] done_nx [V];
+  logic [IdxW-1:0]    head_d, tail_d;
+  logic [CntW-1:0]    count_d;
+  logic [NumCand-1:0] ready, ready_d, ready_q;
   for (genvar a = 0; a < V; a++) begin : g_age
-    logic [IdxW:0]       sum;
+    logic [IdxW:0]       sum, sum_d;
     logic [NumOps-1:0]   dn, rdy;
     assign sum = {1'b0, head_q} + (IdxW + 1)'(a);
     assign age_ctx[a] = (sum >= (IdxW + 1)'(V)) ? IdxW'(sum - (IdxW + 1)'(V)) : sum[IdxW-1:0];
-    assign dn = done_q[age_ctx[a]];
+    assign sum_d = {1'b0, head_d} + (IdxW + 1)'(a);
+    assign age_ctx_d[a] = (sum_d >= (IdxW + 1)'(V)) ? IdxW'(sum_d - (IdxW + 1)'(V)) : sum_d[IdxW-1:0];
+    assign dn = done_nx[age_ctx_d[a]];
     logic unused_dn;
     assign unused_dn = ^dn[13:12];  // nothing depends on ops 12 and 13
     // Dependences of the L2 and L3 operations.
     always_comb begin
-      rdy = ~issued_q[age_ctx[a]];
+      rdy = ~issued_nx[age_ctx_d[a]];
       rdy[9]  = rdy[9]  & dn[0] & dn[1] & dn[3];
       rdy[10] = rdy[10] & dn[1] & dn[2] & dn[4];
       rdy[11] = rdy[11] & dn[3] & dn[4] & dn[5];
       rdy[12] = rdy[12] & dn[6] & dn[7] & dn[8];
       rdy[13] = rdy[13] & dn[9] & dn[10] & dn[11];
     end
-    assign ready[a*NumOps +: NumOps] = (CntW'(a) < count_q) ? rdy : '0;
+    assign ready_d[a*NumOps +: NumOps] = (CntW'(a) < count_d) ? rdy : '0;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ready_q <= '0;  // no context allocated
+    end else begin
+      ready_q <= ready_d;
+    end
+  end
+  assign ready = ready_q;
+
+  // The first N ready candidates issue, the i-th onto INT block i. Candidate c goes to slot i
+  // when it is ready and exactly i ready candidates precede it: a parallel-prefix count of the
+  // ready bits (Kogge-Stone, log2(V 14) levels), saturated at N and kept as a thermometer code
+  // (bit k: at least k + 1), so the depth grows with log N rather than with N rounds of a
+  // lowest-set-bit search.
+  localparam int unsigned Levels = $clog2(NumCand);
+  (* mem2reg *) logic [N-1:0] prefix [NumCand];      // after level l: ready bits in (c - 2^l, c]
+  (* mem2reg *) logic [N-1:0] prefix_nx [NumCand];
+  always_comb begin
+    for (int c = 0; c < NumCand; c++) prefix[c] = N'(ready[c]);
+    for (int l = 0; l < Levels; l++) begin
+      for (int c = 0; c < NumCand; c++) begin
+        prefix_nx[c] = prefix[c];
+        if (c >= (1 << l)) begin
+          // a + b >= k + 1 for thermometers a, b: some split i + (k + 1 - i) with both parts met.
+          for (int k = 0; k < N; k++) begin
+            prefix_nx[c][k] = prefix[c][k] | prefix[c-(1<<l)][k];
+            for (int i = 1; i <= k; i++) prefix_nx[c][k] = prefix_nx[c][k] | (prefix[c][i-1] & prefix[c-(1<<l)][k-i]);
+          end
+        end
+      end
+      for (int c = 0; c < NumCand; c++) prefix[c] = prefix_nx[c];
+    end
+  end
+  // Ready candidates before c (exclusive prefix), saturated at N.
+  (* mem2reg *) logic [N-1:0] preceding [NumCand];
+  assign preceding[0] = '0;
+  for (genvar c = 1; c < NumCand; c++) begin : g_before
+    assign preceding[c] = prefix[c-1];
   end
 
-  // The first N ready candidates issue, the i-th onto INT block i: N rounds of isolating the
-  // lowest set bit (x & -x, a carry chain that synthesis builds with lookahead) and clearing
-  // it, then a one-hot to (age, op) encoder per slot.
   logic [N-1:0]       slot_valid;
-  (* mem2reg *) logic [IdxW-1:0]    slot_age [N];
-  (* mem2reg *) logic [OpW-1:0]     slot_op [N];
   (* mem2reg *) logic [NumCand-1:0] slot_hot [N];
-  logic [NumCand-1:0] remaining;
+  (* mem2reg *) logic [V-1:0]       slot_age_hot [N];  // one-hot age of slot i's candidate
+  (* mem2reg *) logic [NumOps-1:0]  slot_op_hot [N];   // one-hot op
+  logic [NumCand-1:0] remaining;  // ready, left after the N slots
   logic [NumCand-1:0] selected;
-  always_comb begin
-    remaining = ready;
-    for (int i = 0; i < N; i++) begin
-      slot_hot[i]   = remaining & (~remaining + NumCand'(1));
-      slot_valid[i] = (remaining != '0);
-      remaining     = remaining & ~slot_hot[i];
-    end
-    selected = ready & ~remaining;
+  for (genvar c = 0; c < NumCand; c++) begin : g_select
+    assign selected[c]  = ready[c] && !preceding[c][N-1];
+    assign remaining[c] = ready[c] && preceding[c][N-1];
   end
   for (genvar i = 0; i < N; i++) begin : g_slot
+    for (genvar c = 0; c < NumCand; c++) begin : g_hot
+      // exactly i before c: at least i (bit i - 1) and not at least i + 1 (bit i)
+      if (i == 0) begin : g_first
+        assign slot_hot[i][c] = ready[c] && !preceding[c][0];
+      end else begin : g_next
+        assign slot_hot[i][c] = ready[c] && preceding[c][i-1] && !preceding[c][i];
+      end
+    end
+    assign slot_valid[i] = (slot_hot[i] != '0);
     always_comb begin
-      slot_age[i] = '0;
-      slot_op[i]  = '0;
+      slot_age_hot[i] = '0;
+      slot_op_hot[i]  = '0;
       for (int c = 0; c < NumCand; c++) begin
-        slot_age[i] |= slot_hot[i][c] ? IdxW'(c / NumOps) : '0;
-        slot_op[i]  |= slot_hot[i][c] ? OpW'(c % NumOps) : '0;
+        slot_age_hot[i][c / NumOps] |= slot_hot[i][c];
+        slot_op_hot[i][c % NumOps]  |= slot_hot[i][c];
+      end
+    end
+  end
+
+  // Per age, from the registers alone (in parallel with the scheduler): its context and buffer
+  // one-hot and its temporaries.
+  (* mem2reg *) logic [V-1:0]       age_ctx_hot [V];
+  (* mem2reg *) logic [Buffers-1:0] age_bank_hot [V];
+  (* mem2reg *) logic [3*W-1:0]     age_temp [V][12];
+  always_comb begin
+    for (int a = 0; a < V; a++) begin
+      age_ctx_hot[a]  = '0;
+      age_bank_hot[a] = '0;
+      for (int x = 0; x < V; x++) age_ctx_hot[a][x] = (age_ctx[a] == IdxW'(x));
+      for (int x = 0; x < V; x++) begin
+        for (int b = 0; b < Buffers; b++) age_bank_hot[a][b] |= age_ctx_hot[a][x] && (ctx_buf_q[x] == BufW'(b));
+      end
+      for (int k = 0; k < 12; k++) begin
+        age_temp[a][k] = '0;
+        for (int x = 0; x < V; x++) age_temp[a][k] |= age_ctx_hot[a][x] ? temp_q[x][k] : '0;
       end
     end
   end
@@ -166,67 +237,86 @@ module tess_te #(
   (* mem2reg *) logic [3*W-1:0]    wb_res [N];
 
   for (genvar i = 0; i < N; i++) begin : g_int
-    logic [IdxW-1:0] ctx;
-    logic [OpW-1:0]  op;
-    logic [BufW-1:0] bank;
+    // Every select below is an AND-OR over one-hot lines taken from the slot's candidate, so
+    // that no binary index is encoded and decoded again on the issue path.
+    logic [IdxW-1:0]    ctx;
+    logic [OpW-1:0]     op;
+    logic [V-1:0]       ctx_hot;   // the physical context of the slot's age
+    logic [Buffers-1:0] bank_hot;  // its control-point buffer
     (* mem2reg *) logic [3*W-1:0]  bsel [10];
     (* mem2reg *) logic [3*W-1:0]  nsel [6];
     (* mem2reg *) logic [3*W-1:0]  tsel [12];
     logic [3*W-1:0]  opa, opb, opc;
-    assign ctx  = age_ctx[slot_age[i]];
-    assign op   = slot_op[i];
-    assign bank = ctx_buf_q[ctx];
-    // The operands of the context's buffer: one 2:1 multiplexer per bit and buffer beyond the
-    // first, with constant part-selects (a part-select at a variable offset would make Yosys
-    // build a shifter over every buffer's bits before optimizing it away).
+    logic [B:0]      wsel, usel, vsel;
+    always_comb begin
+      ctx_hot  = '0;
+      bank_hot = '0;
+      for (int a = 0; a < V; a++) begin
+        ctx_hot  |= slot_age_hot[i][a] ? age_ctx_hot[a] : '0;
+        bank_hot |= slot_age_hot[i][a] ? age_bank_hot[a] : '0;
+      end
+      ctx = '0;
+      for (int x = 0; x < V; x++) ctx |= ctx_hot[x] ? IdxW'(x) : '0;
+      op = '0;
+      for (int o = 0; o < NumOps; o++) op |= slot_op_hot[i][o] ? OpW'(o) : '0;
+      wsel = '0;
+      usel = '0;
+      vsel = '0;
+      for (int x = 0; x < V; x++) begin
+        wsel |= ctx_hot[x] ? ctx_w_q[x] : '0;
+        usel |= ctx_hot[x] ? ctx_u_q[x] : '0;
+        vsel |= ctx_hot[x] ? ctx_v_q[x] : '0;
+      end
+    end
+    // The operands of the context's buffer, with constant part-selects (a part-select at a
+    // variable offset would make Yosys build a shifter over every buffer's bits).
     always_comb begin
       for (int k = 0; k < 10; k++) begin
-        bsel[k] = b_i[3 * k * W +: 3 * W];
-        for (int b = 1; b < Buffers; b++) begin
-          if (bank == BufW'(b)) bsel[k] = b_i[(30 * b + 3 * k) * W +: 3 * W];
-        end
+        bsel[k] = '0;
+        for (int b = 0; b < Buffers; b++) bsel[k] |= bank_hot[b] ? b_i[(30 * b + 3 * k) * W +: 3 * W] : '0;
       end
       for (int k = 0; k < 6; k++) begin
-        nsel[k] = n_i[3 * k * W +: 3 * W];
-        for (int b = 1; b < Buffers; b++) begin
-          if (bank == BufW'(b)) nsel[k] = n_i[(18 * b + 3 * k) * W +: 3 * W];
-        end
+        nsel[k] = '0;
+        for (int b = 0; b < Buffers; b++) nsel[k] |= bank_hot[b] ? n_i[(18 * b + 3 * k) * W +: 3 * W] : '0;
       end
     end
-    // Temporaries T0..T11 of the context: explicit one-hot selects (an index into the
-    // two-dimensional array would be decoded over all V x 14 entries).
-    logic [V-1:0] ctx_hot;
-    for (genvar x = 0; x < V; x++) begin : g_hot
-      assign ctx_hot[x] = (ctx == IdxW'(x));
-    end
+    // Temporaries T0..T11 of the slot's age (the ages' temporaries are selected from the
+    // registers in parallel with the scheduler).
     always_comb begin
       for (int k = 0; k < 12; k++) begin
         tsel[k] = '0;
-        for (int x = 0; x < V; x++) tsel[k] |= ctx_hot[x] ? temp_q[x][k] : '0;
+        for (int a = 0; a < V; a++) tsel[k] |= slot_age_hot[i][a] ? age_temp[a][k] : '0;
       end
     end
-    // Operands of the 14 operations (§8 table; linear op 6 combines N1, N2, N3).
+    // Temporaries T0..T11 of the context.
+    // Operands of the 14 operations (§8 table; linear op 6 combines N1, N2, N3), selected by the
+    // one-hot op.
+    (* mem2reg *) logic [3*W-1:0] op_a [NumOps], op_b [NumOps], op_c [NumOps];
     always_comb begin
-      case (op)
-        4'd0:    begin opa = bsel[0]; opb = bsel[1]; opc = bsel[4]; end
-        4'd1:    begin opa = bsel[1]; opb = bsel[2]; opc = bsel[5]; end
-        4'd2:    begin opa = bsel[2]; opb = bsel[3]; opc = bsel[6]; end
-        4'd3:    begin opa = bsel[4]; opb = bsel[5]; opc = bsel[7]; end
-        4'd4:    begin opa = bsel[5]; opb = bsel[6]; opc = bsel[8]; end
-        4'd5:    begin opa = bsel[7]; opb = bsel[8]; opc = bsel[9]; end
-        4'd6:    begin
-          opa = nsel[0];
-          opb = mode_linear ? nsel[2] : nsel[1];
-          opc = mode_linear ? nsel[5] : nsel[3];
-        end
-        4'd7:    begin opa = nsel[1]; opb = nsel[2]; opc = nsel[4]; end
-        4'd8:    begin opa = nsel[3]; opb = nsel[4]; opc = nsel[5]; end
-        4'd9:    begin opa = tsel[0]; opb = tsel[1]; opc = tsel[3]; end
-        4'd10:   begin opa = tsel[1]; opb = tsel[2]; opc = tsel[4]; end
-        4'd11:   begin opa = tsel[3]; opb = tsel[4]; opc = tsel[5]; end
-        4'd12:   begin opa = tsel[6]; opb = tsel[7]; opc = tsel[8]; end
-        default: begin opa = tsel[9]; opb = tsel[10]; opc = tsel[11]; end
-      endcase
+      op_a[0]  = bsel[0]; op_b[0]  = bsel[1];  op_c[0]  = bsel[4];
+      op_a[1]  = bsel[1]; op_b[1]  = bsel[2];  op_c[1]  = bsel[5];
+      op_a[2]  = bsel[2]; op_b[2]  = bsel[3];  op_c[2]  = bsel[6];
+      op_a[3]  = bsel[4]; op_b[3]  = bsel[5];  op_c[3]  = bsel[7];
+      op_a[4]  = bsel[5]; op_b[4]  = bsel[6];  op_c[4]  = bsel[8];
+      op_a[5]  = bsel[7]; op_b[5]  = bsel[8];  op_c[5]  = bsel[9];
+      op_a[6]  = nsel[0];
+      op_b[6]  = mode_linear ? nsel[2] : nsel[1];
+      op_c[6]  = mode_linear ? nsel[5] : nsel[3];
+      op_a[7]  = nsel[1]; op_b[7]  = nsel[2];  op_c[7]  = nsel[4];
+      op_a[8]  = nsel[3]; op_b[8]  = nsel[4];  op_c[8]  = nsel[5];
+      op_a[9]  = tsel[0]; op_b[9]  = tsel[1];  op_c[9]  = tsel[3];
+      op_a[10] = tsel[1]; op_b[10] = tsel[2];  op_c[10] = tsel[4];
+      op_a[11] = tsel[3]; op_b[11] = tsel[4];  op_c[11] = tsel[5];
+      op_a[12] = tsel[6]; op_b[12] = tsel[7];  op_c[12] = tsel[8];
+      op_a[13] = tsel[9]; op_b[13] = tsel[10]; op_c[13] = tsel[11];
+      opa = '0;
+      opb = '0;
+      opc = '0;
+      for (int o = 0; o < NumOps; o++) begin
+        opa |= slot_op_hot[i][o] ? op_a[o] : '0;
+        opb |= slot_op_hot[i][o] ? op_b[o] : '0;
+        opc |= slot_op_hot[i][o] ? op_c[o] : '0;
+      end
     end
 
     tess_int #(
@@ -240,9 +330,9 @@ module tess_te #(
       .rst_ni (rst_ni),
       .valid_i(slot_valid[i]),
       .tag_i  ({ctx, op}),
-      .w_i    (ctx_w_q[ctx]),
-      .u_i    (ctx_u_q[ctx]),
-      .v_i    (ctx_v_q[ctx]),
+      .w_i    (wsel),
+      .u_i    (usel),
+      .v_i    (vsel),
       .a_i    (opa),
       .b_i    (opb),
       .c_i    (opc),
@@ -282,8 +372,6 @@ module tess_te #(
                   head_nrm, head_pos};
 
   // ------------------------------------------------------------------ queue state
-  logic [IdxW-1:0] head_d, tail_d;
-  logic [CntW-1:0] count_d;
   always_comb begin
     tail_d  = tail_q;
     head_d  = head_q;
@@ -365,6 +453,9 @@ module tess_te #(
         done_d   = done_q[x] | done_set;
       end
     end
+
+    assign issued_nx[x] = issued_d;
+    assign done_nx[x]   = done_d;
 
     always_ff @(posedge clk_i) begin
       ctx_w_q[x]     <= w_d;

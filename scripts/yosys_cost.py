@@ -40,7 +40,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 RECORD_SCHEMA = 2
 # Leaf modules synthesized inside their parents rather than as records of their own.
-INLINE = ("tess_sat", "tess_dpg_place")
+INLINE = ("tess_sat",)
 TOP = "tess_unit"
 # Reported as blocks: the module and its subtree, once or times its instances (the CPG's copies
 # together; one INT block, whose count N the study multiplies itself).

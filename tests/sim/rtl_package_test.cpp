@@ -150,47 +150,32 @@ TEST(RtlPackage, IntOpTableIsTheRtls) {
     EXPECT_EQ(d == depends.end() ? 0u : d->second, op.depends) << "dependences of op " << op.op;
   }
 
-  // Operands: `4'dO: begin opa = Xsel[i]; opb = ...; opc = ...; end`, the last op as `default`;
-  // op 6 has `mode_linear ? nsel[i] : nsel[j]` for the linear normal.
-  const std::regex entry(R"((?:4'd(\d+)|default)\s*:\s*begin([\s\S]*?)\bend\b)");
-  const std::regex operand(R"(op([abc])\s*=\s*(?:mode_linear\s*\?\s*([bnt])sel\[(\d+)\]\s*:\s*)?([bnt])sel\[(\d+)\])");
+  // Operands: `op_a[O] = Xsel[i];`, `op_b[O] = ...;`, `op_c[O] = ...;` for every op O; op 6
+  // has `mode_linear ? nsel[i] : nsel[j]` for the linear normal.
+  const std::regex operand(
+      R"(op_([abc])\[(\d+)\]\s*=\s*(?:mode_linear\s*\?\s*([bnt])sel\[(\d+)\]\s*:\s*)?([bnt])sel\[(\d+)\]\s*;)");
   auto to_operand = [](const std::string& net, const std::string& index) {
     const int i = std::stoi(index);
     return net == "b" ? int_ops::b(i) : net == "n" ? int_ops::n(i) : int_ops::t(i);
   };
   auto same = [](const int_ops::Operand& x, const int_ops::Operand& y) { return x.net == y.net && x.index == y.index; };
-  std::set<int> seen;
-  int default_entries = 0;
-  std::vector<std::pair<int, std::string>> bodies;
-  for (auto it = std::sregex_iterator(te.begin(), te.end(), entry); it != std::sregex_iterator(); ++it) {
-    if (!(*it)[1].matched) {
-      ++default_entries;
-      bodies.emplace_back(-1, (*it)[2].str());
-    } else {
-      seen.insert(std::stoi((*it)[1].str()));
-      bodies.emplace_back(std::stoi((*it)[1].str()), (*it)[2].str());
-    }
+  std::map<int, std::array<int_ops::Operand, 3>> normal, linear;
+  std::map<int, int> found;
+  for (auto m = std::sregex_iterator(te.begin(), te.end(), operand); m != std::sregex_iterator(); ++m) {
+    const int op = std::stoi((*m)[2].str());
+    const std::size_t slot = static_cast<std::size_t>((*m)[1].str()[0] - 'a');
+    normal[op][slot] = to_operand((*m)[5].str(), (*m)[6].str());
+    linear[op][slot] = (*m)[3].matched ? to_operand((*m)[3].str(), (*m)[4].str()) : normal[op][slot];
+    ++found[op];
   }
-  ASSERT_EQ(seen.size(), static_cast<std::size_t>(int_ops::kOpCount - 1));
-  ASSERT_EQ(default_entries, 1);
-  int default_op = -1;
-  for (int o = 0; o < int_ops::kOpCount; ++o)
-    if (!seen.count(o)) default_op = o;
-  for (auto& [op, body] : bodies) {
-    if (op < 0) op = default_op;
-    std::array<int_ops::Operand, 3> normal{}, linear{};
-    int found = 0;
-    for (auto m = std::sregex_iterator(body.begin(), body.end(), operand); m != std::sregex_iterator(); ++m, ++found) {
-      const std::size_t slot = static_cast<std::size_t>((*m)[1].str()[0] - 'a');
-      normal[slot] = to_operand((*m)[4].str(), (*m)[5].str());
-      linear[slot] = (*m)[2].matched ? to_operand((*m)[2].str(), (*m)[3].str()) : normal[slot];
-    }
-    ASSERT_EQ(found, 3) << "operands of op " << op;
+  ASSERT_EQ(found.size(), static_cast<std::size_t>(int_ops::kOpCount));
+  for (int op = 0; op < int_ops::kOpCount; ++op) {
+    ASSERT_EQ(found[op], 3) << "operands of op " << op;
     for (std::size_t s = 0; s < 3; ++s) {
       const int_ops::Operand want = int_ops::operands(op, NormalMode::Quadratic)[s];
       const int_ops::Operand want_linear = int_ops::operands(op, NormalMode::Linear)[s];
-      EXPECT_TRUE(same(normal[s], want)) << "op " << op << " operand " << s;
-      EXPECT_TRUE(same(linear[s], want_linear)) << "op " << op << " operand " << s << " (linear)";
+      EXPECT_TRUE(same(normal[op][s], want)) << "op " << op << " operand " << s;
+      EXPECT_TRUE(same(linear[op][s], want_linear)) << "op " << op << " operand " << s << " (linear)";
     }
   }
 }
