@@ -4,10 +4,11 @@
 //
 // Latency (docs/microarchitecture.md §8): an op issued in cycle t leaves on res_o in cycle
 // t + Latency - 1, so that the TE writes it at the end of that cycle. With Latency = 1 the
-// block is combinational, behind the TE's scheduler and operand select in one path. With
-// Latency >= 2 the first register takes the selected operands (the scheduler and the 45-level
-// multiply-add then sit in different cycles: docs/rtl.md, Depth budget); with Latency >= 3 the
-// second sits between the multipliers and the adder; any further registers delay the result.
+// block is combinational, behind the TE's operand select in one path. With Latency >= 2 the
+// first register takes the selected operands (the select and the 45-level multiply-add then sit
+// in different cycles: docs/rtl.md, Depth budget); with Latency >= 3 the second sits between
+// the multipliers and the adder; any further registers delay the result. The TE gives the block
+// one register fewer than its IntLatency when it registers the slots' choices itself.
 module tess_int #(
   parameter int unsigned CoordWidth = 24,               // W
   parameter int unsigned BaryBits   = tess_pkg::BaryBits,  // B

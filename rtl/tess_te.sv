@@ -215,7 +215,7 @@ module tess_te #(
   // one-hot and its temporaries.
   (* mem2reg *) logic [V-1:0]       age_ctx_hot [V];
   (* mem2reg *) logic [Buffers-1:0] age_bank_hot [V];
-  (* mem2reg *) logic [3*W-1:0]     age_temp [V][12];
+  (* mem2reg *) logic [3*W-1:0]     age_temp [V][12];  // used without the choice register
   always_comb begin
     for (int a = 0; a < V; a++) begin
       age_ctx_hot[a]  = '0;
@@ -236,6 +236,12 @@ module tess_te #(
   (* mem2reg *) logic [TagW-1:0]   wb_tag [N];
   (* mem2reg *) logic [3*W-1:0]    wb_res [N];
 
+  // With IntLatency >= 3 the slots' choices are registered: the issue cycle ends with the
+  // scheduler, the operands are selected in the next and the INT block (one register fewer)
+  // multiplies and adds in the one after, so the result is written in the same cycle as with the
+  // registers inside the block. The operands read a cycle later are the same: an op's sources
+  // are done before it issues and its context cannot retire while it is in flight.
+  localparam bit ChoiceReg = (IntLatency >= 3);
   for (genvar i = 0; i < N; i++) begin : g_int
     // Every select below is an AND-OR over one-hot lines taken from the slot's candidate, so
     // that no binary index is encoded and decoded again on the issue path.
@@ -243,6 +249,10 @@ module tess_te #(
     logic [OpW-1:0]     op;
     logic [V-1:0]       ctx_hot;   // the physical context of the slot's age
     logic [Buffers-1:0] bank_hot;  // its control-point buffer
+    logic               sel_valid;
+    logic [V-1:0]       sel_ctx_hot;
+    logic [Buffers-1:0] sel_bank_hot;
+    logic [NumOps-1:0]  sel_op_hot;
     (* mem2reg *) logic [3*W-1:0]  bsel [10];
     (* mem2reg *) logic [3*W-1:0]  nsel [6];
     (* mem2reg *) logic [3*W-1:0]  tsel [12];
@@ -255,17 +265,65 @@ module tess_te #(
         ctx_hot  |= slot_age_hot[i][a] ? age_ctx_hot[a] : '0;
         bank_hot |= slot_age_hot[i][a] ? age_bank_hot[a] : '0;
       end
+    end
+    if (ChoiceReg) begin : g_choice_reg
+      logic               valid_d, valid_q;
+      logic [V-1:0]       ctx_hot_d, ctx_hot_q;
+      logic [Buffers-1:0] bank_hot_d, bank_hot_q;
+      logic [NumOps-1:0]  op_hot_d, op_hot_q;
+      assign valid_d    = slot_valid[i];
+      assign ctx_hot_d  = ctx_hot;
+      assign bank_hot_d = bank_hot;
+      assign op_hot_d   = slot_op_hot[i];
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) begin
+          valid_q <= 1'b0;
+        end else begin
+          valid_q <= valid_d;
+        end
+      end
+      always_ff @(posedge clk_i) begin
+        ctx_hot_q  <= ctx_hot_d;
+        bank_hot_q <= bank_hot_d;
+        op_hot_q   <= op_hot_d;
+      end
+      assign sel_valid    = valid_q;
+      assign sel_ctx_hot  = ctx_hot_q;
+      assign sel_bank_hot = bank_hot_q;
+      assign sel_op_hot   = op_hot_q;
+      // Temporaries T0..T11 of the chosen context.
+      always_comb begin
+        for (int k = 0; k < 12; k++) begin
+          tsel[k] = '0;
+          for (int x = 0; x < V; x++) tsel[k] |= ctx_hot_q[x] ? temp_q[x][k] : '0;
+        end
+      end
+    end else begin : g_choice_comb
+      assign sel_valid    = slot_valid[i];
+      assign sel_ctx_hot  = ctx_hot;
+      assign sel_bank_hot = bank_hot;
+      assign sel_op_hot   = slot_op_hot[i];
+      // Temporaries T0..T11 of the slot's age (the ages' temporaries are selected from the
+      // registers in parallel with the scheduler).
+      always_comb begin
+        for (int k = 0; k < 12; k++) begin
+          tsel[k] = '0;
+          for (int a = 0; a < V; a++) tsel[k] |= slot_age_hot[i][a] ? age_temp[a][k] : '0;
+        end
+      end
+    end
+    always_comb begin
       ctx = '0;
-      for (int x = 0; x < V; x++) ctx |= ctx_hot[x] ? IdxW'(x) : '0;
+      for (int x = 0; x < V; x++) ctx |= sel_ctx_hot[x] ? IdxW'(x) : '0;
       op = '0;
-      for (int o = 0; o < NumOps; o++) op |= slot_op_hot[i][o] ? OpW'(o) : '0;
+      for (int o = 0; o < NumOps; o++) op |= sel_op_hot[o] ? OpW'(o) : '0;
       wsel = '0;
       usel = '0;
       vsel = '0;
       for (int x = 0; x < V; x++) begin
-        wsel |= ctx_hot[x] ? ctx_w_q[x] : '0;
-        usel |= ctx_hot[x] ? ctx_u_q[x] : '0;
-        vsel |= ctx_hot[x] ? ctx_v_q[x] : '0;
+        wsel |= sel_ctx_hot[x] ? ctx_w_q[x] : '0;
+        usel |= sel_ctx_hot[x] ? ctx_u_q[x] : '0;
+        vsel |= sel_ctx_hot[x] ? ctx_v_q[x] : '0;
       end
     end
     // The operands of the context's buffer, with constant part-selects (a part-select at a
@@ -273,22 +331,13 @@ module tess_te #(
     always_comb begin
       for (int k = 0; k < 10; k++) begin
         bsel[k] = '0;
-        for (int b = 0; b < Buffers; b++) bsel[k] |= bank_hot[b] ? b_i[(30 * b + 3 * k) * W +: 3 * W] : '0;
+        for (int b = 0; b < Buffers; b++) bsel[k] |= sel_bank_hot[b] ? b_i[(30 * b + 3 * k) * W +: 3 * W] : '0;
       end
       for (int k = 0; k < 6; k++) begin
         nsel[k] = '0;
-        for (int b = 0; b < Buffers; b++) nsel[k] |= bank_hot[b] ? n_i[(18 * b + 3 * k) * W +: 3 * W] : '0;
+        for (int b = 0; b < Buffers; b++) nsel[k] |= sel_bank_hot[b] ? n_i[(18 * b + 3 * k) * W +: 3 * W] : '0;
       end
     end
-    // Temporaries T0..T11 of the slot's age (the ages' temporaries are selected from the
-    // registers in parallel with the scheduler).
-    always_comb begin
-      for (int k = 0; k < 12; k++) begin
-        tsel[k] = '0;
-        for (int a = 0; a < V; a++) tsel[k] |= slot_age_hot[i][a] ? age_temp[a][k] : '0;
-      end
-    end
-    // Temporaries T0..T11 of the context.
     // Operands of the 14 operations (§8 table; linear op 6 combines N1, N2, N3), selected by the
     // one-hot op.
     (* mem2reg *) logic [3*W-1:0] op_a [NumOps], op_b [NumOps], op_c [NumOps];
@@ -313,22 +362,22 @@ module tess_te #(
       opb = '0;
       opc = '0;
       for (int o = 0; o < NumOps; o++) begin
-        opa |= slot_op_hot[i][o] ? op_a[o] : '0;
-        opb |= slot_op_hot[i][o] ? op_b[o] : '0;
-        opc |= slot_op_hot[i][o] ? op_c[o] : '0;
+        opa |= sel_op_hot[o] ? op_a[o] : '0;
+        opb |= sel_op_hot[o] ? op_b[o] : '0;
+        opc |= sel_op_hot[o] ? op_c[o] : '0;
       end
     end
 
     tess_int #(
       .CoordWidth(W),
       .BaryBits  (B),
-      .Latency   (IntLatency),
+      .Latency   (IntLatency - 32'(ChoiceReg)),
       .TagWidth  (TagW),
       .InjectBug (InjectBug)
     ) u_int (
       .clk_i  (clk_i),
       .rst_ni (rst_ni),
-      .valid_i(slot_valid[i]),
+      .valid_i(sel_valid),
       .tag_i  ({ctx, op}),
       .w_i    (wsel),
       .u_i    (usel),
