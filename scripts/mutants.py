@@ -89,7 +89,15 @@ def run(cmd, **kw):
 
 
 def copy_tree(dst):
+    """Brings the copy up to the working tree's tracked files, deleting files that are no longer
+    tracked (a stale source would still be globbed into the build)."""
     files = run(["git", "ls-files"], cwd=ROOT).stdout.split()
+    tracked = set(files)
+    for base, _, names in os.walk(dst):
+        for n in names:
+            rel = os.path.relpath(os.path.join(base, n), dst)
+            if rel not in tracked:
+                os.remove(os.path.join(base, n))
     for f in files:
         src = os.path.join(ROOT, f)
         out = os.path.join(dst, f)
