@@ -81,7 +81,8 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
   throw InputError(source, "int_blocks",
                    "no RTL build implements this hardware (int_blocks " + std::to_string(cfg.int_blocks) +
                        ", cpg_lanes " + std::to_string(cfg.cpg.lanes) + ", cpg_digit_bits " +
-                       std::to_string(cfg.cpg.digit_bits) + ", cpg_tags " + std::to_string(cfg.cpg_tags) +
+                       std::to_string(cfg.cpg.digit_bits) + ", cpg_product_reg " + std::to_string(cfg.cpg.product_reg) +
+                       ", cpg_tags " + std::to_string(cfg.cpg_tags) +
                        (a.verif ? ", --verif" : "") +
                        "); the RTL builds are " + known_builds() + " (docs/rtl.md adds one)");
 }

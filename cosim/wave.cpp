@@ -105,7 +105,8 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   const int tag_max = hw.cpg_tags ? sim::cpg_tag_cycles(all_tagged, hw.format, hw.cpg) : 0;
   const int cpg_counter =
       clog2(static_cast<std::uint64_t>(sim::cpg_cycles(NormalMode::Quadratic, hw.format, hw.cpg) + tag_max));
-  const int cpg_step = clog2(static_cast<std::uint64_t>(sim::cpg_edge_cycles(NormalMode::Quadratic, hw.format, hw.cpg.digit_bits)));
+  const int cpg_step = clog2(static_cast<std::uint64_t>(sim::cpg_edge_cycles(NormalMode::Quadratic, hw.format, hw.cpg.digit_bits,
+                                                                           hw.cpg.product_reg != 0)));
   const int te_count = clog2(static_cast<std::uint64_t>(V) + 1);
   const int te_index = V > 1 ? clog2(static_cast<std::uint64_t>(V)) : 1;
   const int buf_index = hw.cp_buffers > 1 ? clog2(static_cast<std::uint64_t>(hw.cp_buffers)) : 1;

@@ -86,6 +86,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   cfg.cpg_gpe_cycles = in.ConsumeIntegralInRange(1, 80);
   const int copies = in.ConsumeIntegralInRange(1, 4);  // the GE mapping has one CPG
   cfg.cpg.copies = cfg.cpg_mapping == CpgMapping::Dedicated ? copies : 1;
+  const bool product_reg = in.ConsumeBool();  // registered products: a dedicated CPG's timing
+  cfg.cpg.product_reg = cfg.cpg_mapping == CpgMapping::Dedicated && product_reg ? 1 : 0;
   static constexpr NormalMode kModes[] = {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear};
   cfg.normals = kModes[in.ConsumeIntegralInRange(0, 2)];
   cfg.gpe_stall_prob = in.ConsumeIntegralInRange(0, 4) * 0.15;

@@ -24,6 +24,7 @@ module tess_cpg #(
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
   parameter int unsigned CpgLanes      = tess_pkg::CpgLanes,
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
+  parameter int unsigned CpgProductReg = tess_pkg::CpgProductReg,
   parameter int unsigned CpgTags       = tess_pkg::CpgTags,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
   localparam int unsigned TriW   = 18 * W + tess_pkg::DescBits + tess_pkg::IdBits
@@ -54,11 +55,14 @@ module tess_cpg #(
   localparam int unsigned IdBits  = tess_pkg::IdBits;
   localparam int unsigned SumTW   = W + 3;                     // sum of six tangent points
   localparam int unsigned X111W   = W + 5;                     // 3 sum(t) - 2 sum(P)
-  // Edge cycles (sim/cpg.cpp cpg_edge_cycles), D digit steps per division or square root.
+  // Edge cycles (sim/cpg.cpp cpg_edge_cycles), D digit steps per division or square root;
+  // registered products (tess_cpg_edge) add steps to each edge and a cycle to b111.
   localparam int unsigned D        = (W + CpgDigitBits - 1) / CpgDigitBits;
-  localparam int unsigned EdgeLin  = 6;
-  localparam int unsigned EdgeRef  = D + 8;
-  localparam int unsigned EdgeQuad = 3 * D + 9;
+  localparam bit          PR       = (CpgProductReg != 0);
+  localparam int unsigned EdgeLin  = PR ? 9 : 6;
+  localparam int unsigned EdgeRef  = PR ? D + 11 : D + 8;
+  localparam int unsigned EdgeQuad = PR ? 3 * D + 13 : 3 * D + 9;
+  localparam int unsigned B111Len  = PR ? 2 : 1;          // b111 cycles
   localparam int unsigned EdgesInTurn = (CpgLanes == 1) ? 3 : 1;  // edges one lane walks
   // Tag pass (sim/cpg.cpp cpg_tag_cycles): a normalization takes scale, dot, D root and D
   // division steps; a tagged corner the side test and three normalizations; a tangent 4 steps.
@@ -70,7 +74,7 @@ module tess_cpg #(
   localparam int unsigned TagMax    = !Tags ? 0
                                     : (CpgLanes == 1) ? FaceLen + 3 * TaggedLen + 6 * TanLen
                                                       : FaceLen + TaggedLen + 2 * TanLen;
-  localparam int unsigned CyclesMax = EdgesInTurn * EdgeQuad + 2 + TagMax;
+  localparam int unsigned CyclesMax = EdgesInTurn * EdgeQuad + B111Len + 1 + TagMax;
   localparam int unsigned CntW    = $clog2(CyclesMax);
   localparam int unsigned StepW   = $clog2(EdgeQuad);
 
@@ -79,24 +83,24 @@ module tess_cpg #(
   assign mode_linear  = (mode_i == tess_pkg::ModeLinear);
   assign mode_reflect = (mode_i == tess_pkg::ModeReflect);
 
-  logic [CntW-1:0]  cycles_m1;   // C - 1 = EdgesInTurn * E + 1
+  logic [CntW-1:0]  cycles_m1;   // C - 1 = EdgesInTurn * E + B111Len
   logic [StepW-1:0] edge_last;   // E - 1
   always_comb begin
     if (mode_linear) begin
-      cycles_m1 = CntW'(EdgesInTurn * EdgeLin + 1);
+      cycles_m1 = CntW'(EdgesInTurn * EdgeLin + B111Len);
       edge_last = StepW'(EdgeLin - 1);
     end else if (mode_reflect) begin
-      cycles_m1 = CntW'(EdgesInTurn * EdgeRef + 1);
+      cycles_m1 = CntW'(EdgesInTurn * EdgeRef + B111Len);
       edge_last = StepW'(EdgeRef - 1);
     end else begin
-      cycles_m1 = CntW'(EdgesInTurn * EdgeQuad + 1);
+      cycles_m1 = CntW'(EdgesInTurn * EdgeQuad + B111Len);
       edge_last = StepW'(EdgeQuad - 1);
     end
   end
 
   logic             busy_q;
   logic [CntW-1:0]  counter_q;
-  logic [1:0]       edge_q;      // 0..2 the edge of a single lane, 3 = b111
+  logic [1:0]       edge_q;      // 0..2 the edge of a single lane, 3 = b111 (step_q counts)
   logic [StepW-1:0] step_q;
   logic             accept, compute, write;
   logic             tag_pass;    // the tag pass runs (before the edge pass)
@@ -441,14 +445,16 @@ module tess_cpg #(
     end
   end
 
-  logic in_edge, in_b111;
+  logic in_edge, in_b111, edge_last_step, b111_next;
   assign in_edge = compute && !tag_pass && (edge_q != 2'd3);
   assign in_b111 = compute && !tag_pass && (edge_q == 2'd3);
+  assign edge_last_step = (step_q == edge_last);
+  assign b111_next = in_edge && edge_last_step && (CpgLanes != 1 || edge_q == 2'd2);
 
   // ------------------------------------------------------------------ staged results
   // Tangent points (edge e: entry 2e near its start, 2e + 1 near its end), mid-edge normals and
   // b111, held until the write (the target buffer may still be in use while the CPG computes).
-  logic [CpgLanes-1:0]                    lane_tan_a, lane_tan_b, lane_mid_valid;
+  logic [CpgLanes-1:0]                    lane_tan_a, lane_tan_b, lane_mid_valid, lane_b111_valid;
   logic [CpgLanes*VecW-1:0]               lane_tangent, lane_mid;
   logic [CpgLanes*tess_pkg::FlagBits-1:0] lane_flags;
   logic [6*VecW-1:0]                      stage_tan;
@@ -486,7 +492,8 @@ module tess_cpg #(
   // x111 = 3 sum(t) - 2 sum(P), accumulated as the tangent points are staged: -2 sum(P) when the
   // triangle is taken, then 3 t for each tangent point in the cycle after it was staged (from the
   // staging register, off the tangent's own path). Each of the six is staged once per triangle,
-  // the last one in step 4 of the last edge (E >= 6), so x111 is complete in the b111 cycle.
+  // the last one in step 4 of the last edge (E >= 6; step 7 of E >= 9 with registered
+  // products), so x111 is complete in the first b111 cycle.
   // The sums are modulo 2^X111W and the result fits, so the order does not change a bit.
   // At most one tangent point is staged a cycle per lane (edge pass and tag pass alike): one of
   // all six with one lane, one of each edge's pair {2e, 2e + 1} with three.
@@ -551,12 +558,14 @@ module tess_cpg #(
     tess_cpg_edge #(
       .CoordIntBits (CoordIntBits),
       .CoordFracBits(CoordFracBits),
-      .DigitBits    (CpgDigitBits)
+      .DigitBits    (CpgDigitBits),
+      .ProductReg   (CpgProductReg)
     ) u_edge (
       .clk_i         (clk_i),
       .mode_reflect_i(mode_reflect),
       .edge_i        (in_edge),
       .step_i        (step_q),
+      .last_i        (edge_last_step),
       .keep_a_i      (keep[0]),
       .keep_b_i      (keep[1]),
       .pa_i          (pa),
@@ -564,13 +573,16 @@ module tess_cpg #(
       .na_i          (na),
       .nb_i          (nb),
       .b111_i        ((e == 0) && in_b111),
+      .b111_next_i   ((e == 0) && b111_next),
       .x111_i        (x111_q),
+      .x111_next_i   (x111_d),
       .tangent_o     (lane_tangent[e*VecW +: VecW]),
       .tangent_a_o   (lane_tan_a[e]),
       .tangent_b_o   (lane_tan_b[e]),
       .mid_o         (lane_mid[e*VecW +: VecW]),
       .mid_valid_o   (lane_mid_valid[e]),
       .b111_o        (lane_b111),
+      .b111_valid_o  (lane_b111_valid[e]),
       .flags_o       (lane_flags[e*tess_pkg::FlagBits +: tess_pkg::FlagBits])
     );
 
@@ -578,12 +590,12 @@ module tess_cpg #(
       assign b111 = lane_b111;
     end else begin : g_no_b111
       logic unused_b111;
-      assign unused_b111 = ^lane_b111;
+      assign unused_b111 = ^lane_b111 ^ lane_b111_valid[e];
     end
   end
 
   always_ff @(posedge clk_i) begin
-    if (in_b111) stage_b111_q <= b111;
+    if (lane_b111_valid[0]) stage_b111_q <= b111;
   end
 
   // ------------------------------------------------------------------ sticky flags

@@ -16,6 +16,7 @@ module tess_cpg_array #(
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
   parameter int unsigned CpgLanes      = tess_pkg::CpgLanes,
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
+  parameter int unsigned CpgProductReg = tess_pkg::CpgProductReg,
   parameter int unsigned CpgTags       = tess_pkg::CpgTags,
   parameter int unsigned CpgCopies     = tess_pkg::CpgCopies,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
@@ -81,6 +82,7 @@ module tess_cpg_array #(
       .CoordFracBits(CoordFracBits),
       .CpgLanes     (CpgLanes),
       .CpgDigitBits (CpgDigitBits),
+      .CpgProductReg(CpgProductReg),
       .CpgTags      (CpgTags)
     ) u_cpg (
       .clk_i      (clk_i),

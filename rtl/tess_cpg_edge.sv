@@ -6,7 +6,7 @@
 // Three component slices (x, y, z), each with one general multiplier (DotW x MulBW bits), one
 // constant multiplier by round(2^G/3) (G = F + 8), a restoring divider retiring DigitBits
 // quotient bits a cycle and, shared, one square root retiring DigitBits root bits a cycle.
-// With D = ceil(W / DigitBits) digit steps, the micro-steps s are:
+// With D = ceil(W / DigitBits) digit steps and ProductReg = 0, the micro-steps s are:
 //   s0        d = Pb - Pa, s = Na + Nb;        wa = d.Na  (slices multiply, adder tree sums)
 //   s1        num = (2Pa + Pb) 2^2F - wa Na    (per slice)
 //   s2        wb = d.Nb;                       tangent near a = round(num / 3)
@@ -21,36 +21,57 @@
 //   s9+D ..   D square-root steps: |m| = isqrt(m.m)
 //   s9+2D ..  D division steps (divisor |m|), the last one yields the mid-edge normal
 //   --- quadratic: E = 3D + 9 ends here ---
+// With ProductReg = 1 the multipliers' products are registered: a product issued in step k is
+// used in step k + 1, so the multiplier and the adders, the dividers' loads and the tangent
+// points behind it are in different cycles; the constant multiplication of a tangent point
+// takes a cycle of its own too. Step 0 only registers d, |d| and s (Pb - Pa in front of a
+// multiplier would undo the gain), and the independent products overlap:
+//   s0  d, |d|, s                s1  issue d.Na              s2  wa = d.Na; issue d.Nb
+//   s3  wb = d.Nb; issue wa Na   s4  num_a; issue wb Nb      s5  num_a / 3; num_b; issue d.s
+//   s6  tangent near a; num_b / 3; p = d.s; issue d.d        s7  tangent near b; q = d.d; p <- |p|
+//   --- linear: E = 9 ends here (the last tangent point reaches b111's sum in s8) ---
+//   s8  issue |d_c| |p|          s9  load dividers           s10 .. D division steps
+//   s10+D  m (reflect: E = D + 11)                           s11+D  issue m.m
+//   s12+D  m.m into the square root; load dividers with |m_c| 2^F
+//   s13+D ..  D square-root steps; s13+2D ..  D division steps (quadratic: E = 3D + 13)
+// and b111 takes two cycles instead of one (issue, then round). sim/cpg.cpp cpg_edge_cycles
+// holds the same E.
 // Every value is exact until the one rounding the C++ reference (sim/cpg.cpp) applies, so the
-// results are bit-identical to compute_control_points whatever DigitBits is.
+// results are bit-identical to compute_control_points whatever DigitBits and ProductReg are.
 module tess_cpg_edge #(
   parameter int unsigned CoordIntBits  = tess_pkg::CoordIntBits,
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
   parameter int unsigned DigitBits     = tess_pkg::CpgDigitBits,
+  parameter int unsigned ProductReg    = tess_pkg::CpgProductReg,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
   localparam int unsigned D      = (W + DigitBits - 1) / DigitBits,
-  localparam int unsigned StepW  = $clog2(3 * D + 9),
+  localparam int unsigned StepW  = $clog2(3 * D + 9 + 4 * ((ProductReg != 0) ? 1 : 0)),
   localparam int unsigned X111W  = W + 5                       // 3 sum(t) - 2 sum(P)
 ) (
   input  logic                          clk_i,
   input  logic                          mode_reflect_i,
   input  logic                          edge_i,       // computing step step_i of an edge
   input  logic [StepW-1:0]              step_i,
+  input  logic                          last_i,       // step_i is the edge's last step
   input  logic                          keep_a_i,     // the tangent point near a is this lane's
   input  logic                          keep_b_i,     // (else the tag pass computes it)
   input  logic [3*W-1:0]                pa_i,         // component c at [cW +: W]
   input  logic [3*W-1:0]                pb_i,
   input  logic [3*W-1:0]                na_i,
   input  logic [3*W-1:0]                nb_i,
-  input  logic                          b111_i,       // the b111 cycle (lane 0 only)
+  input  logic                          b111_i,       // the b111 cycles (lane 0 only), counted
+                                                      // by step_i from 0
+  input  logic                          b111_next_i,  // the next cycle is b111's first
   input  logic [3*X111W-1:0]            x111_i,       // 3 sum(t) - 2 sum(P), per component
+  input  logic [3*X111W-1:0]            x111_next_i,  // ... as it is at the end of this cycle
   // Results, each valid in the cycle its strobe is high.
   output logic [3*W-1:0]                tangent_o,
   output logic                          tangent_a_o,  // tangent_o is the point near a
   output logic                          tangent_b_o,  // tangent_o is the point near b
   output logic [3*W-1:0]                mid_o,
   output logic                          mid_valid_o,
-  output logic [3*W-1:0]                b111_o,       // valid while b111_i
+  output logic [3*W-1:0]                b111_o,
+  output logic                          b111_valid_o, // in b111 step ProductReg
   output logic [tess_pkg::FlagBits-1:0] flags_o       // raised by this cycle's results
 );
 
@@ -66,32 +87,52 @@ module tess_cpg_edge #(
   localparam int unsigned KShift  = 2 * F + G;                 // 3F fraction bits -> F
   localparam int unsigned DenW    = 2 * W + 2;                 // d.d < 3 * 2^2W
   localparam int unsigned MagW    = DenW + 1 + W;              // divider dividend magnitude
-  // Micro-step indices within an edge.
-  localparam int unsigned SDiv1   = 7;
-  localparam int unsigned SM      = 7 + D;
-  localparam int unsigned SMM     = 8 + D;
-  localparam int unsigned SSqrt   = 9 + D;
-  localparam int unsigned SDiv2   = 9 + 2 * D;
+  // Micro-step indices within an edge: the step that issues each product (it is used R steps
+  // later) and the steps that use results (sim/cpg.cpp cpg_edge_cycles).
+  localparam bit          PR      = (ProductReg != 0);
+  localparam int unsigned R       = PR ? 1 : 0;
+  localparam int unsigned SDotA   = R;                 // d.Na
+  localparam int unsigned SMulA   = PR ? 3 : 1;         // wa Na
+  localparam int unsigned SDotB   = 2;                 // d.Nb
+  localparam int unsigned SMulB   = PR ? 4 : 3;         // wb Nb
+  localparam int unsigned SDotS   = PR ? 5 : 4;         // d.s
+  localparam int unsigned SDotD   = PR ? 6 : 5;         // d.d
+  localparam int unsigned STanA   = SMulA + 2 * R + 1; // the tangent point near a leaves
+  localparam int unsigned STanB   = SMulB + 2 * R + 1; // the tangent point near b leaves
+  localparam int unsigned SAbs    = SDotD + R;         // q = d.d; p <- |p|
+  localparam int unsigned SNum    = SAbs + 1;          // |d_c| |p|
+  localparam int unsigned SLoad1  = SNum + R;          // the dividers take |d_c| |p|
+  localparam int unsigned SDiv1   = SLoad1 + 1;
+  localparam int unsigned SM      = SDiv1 + D;
+  localparam int unsigned SMM     = SM + 1;            // m.m
+  localparam int unsigned SLoad2  = SMM + R;           // the square root takes m.m
+  localparam int unsigned SSqrt   = SLoad2 + 1;
+  localparam int unsigned SDiv2   = SSqrt + D;
 
   // ------------------------------------------------------------------ step decode
-  logic st_dot_a, st_mul_a, st_dot_b, st_mul_b, st_dot_s, st_dot_d, st_num;
-  logic st_div1, st_div1_first, st_div1_last, st_m, st_mm, st_sqrt;
-  logic st_div2, st_div2_first, st_div2_last;
+  // st_*: a step's work; use_*: a product is used (iss_*, below: a product is issued).
+  logic st_edge0, use_dot_a, use_mul_a, use_dot_b, use_mul_b, use_dot_s, use_b111;
+  logic st_tan_a, st_tan_b, st_abs, st_load1, st_load2, st_m;
+  logic st_div1, st_div1_first, st_div1_last, st_sqrt, st_div2, st_div2_first, st_div2_last;
 
-  assign st_dot_a      = edge_i && (step_i == StepW'(0));
-  assign st_mul_a      = edge_i && (step_i == StepW'(1));
-  assign st_dot_b      = edge_i && (step_i == StepW'(2));
-  assign st_mul_b      = edge_i && (step_i == StepW'(3));
-  assign st_dot_s      = edge_i && (step_i == StepW'(4));
-  assign st_dot_d      = edge_i && (step_i == StepW'(5));
-  assign st_num        = edge_i && (step_i == StepW'(6));
+  assign st_edge0      = edge_i && (step_i == StepW'(0));
+  assign use_dot_a     = edge_i && (step_i == StepW'(SDotA + R));
+  assign use_mul_a     = edge_i && (step_i == StepW'(SMulA + R));
+  assign use_dot_b     = edge_i && (step_i == StepW'(SDotB + R));
+  assign use_mul_b     = edge_i && (step_i == StepW'(SMulB + R));
+  assign use_dot_s     = edge_i && (step_i == StepW'(SDotS + R));
+  assign use_b111      = b111_i && (step_i == StepW'(R));
+  assign st_tan_a      = edge_i && (step_i == StepW'(STanA));
+  assign st_tan_b      = edge_i && (step_i == StepW'(STanB));
+  assign st_abs        = edge_i && (step_i == StepW'(SAbs));
+  assign st_load1      = edge_i && (step_i == StepW'(SLoad1));
+  assign st_load2      = edge_i && (step_i == StepW'(SLoad2));
+  assign st_m          = edge_i && (step_i == StepW'(SM));
   assign st_div1       = edge_i && (step_i >= StepW'(SDiv1)) && (step_i < StepW'(SDiv1 + D));
   assign st_div1_first = edge_i && (step_i == StepW'(SDiv1));
   assign st_div1_last  = edge_i && (step_i == StepW'(SDiv1 + D - 1));
-  assign st_m          = edge_i && (step_i == StepW'(SM));
-  assign st_mm         = edge_i && (step_i == StepW'(SMM));
   assign st_sqrt       = edge_i && (step_i >= StepW'(SSqrt)) && (step_i < StepW'(SSqrt + D));
-  assign st_div2       = edge_i && (step_i >= StepW'(SDiv2)) && (step_i < StepW'(SDiv2 + D));
+  assign st_div2       = edge_i && (step_i >= StepW'(SDiv2));  // the quadratic edge's last D
   assign st_div2_first = edge_i && (step_i == StepW'(SDiv2));
   assign st_div2_last  = edge_i && (step_i == StepW'(SDiv2 + D - 1));
 
@@ -107,7 +148,6 @@ module tess_cpg_edge #(
   // ------------------------------------------------------------------ edge registers
   (* mem2reg *) logic [W:0]        d_q [3];    // Pb - Pa
   (* mem2reg *) logic [W:0]        s_q [3];    // Na + Nb
-  logic [DotW-1:0]   wa_q, wb_q; // d.Na, d.Nb
   logic [DotW-1:0]   pdot_q;     // d.s, then |d.s|
   logic              pneg_q;     // sign of d.s
   logic [DenW-1:0]   q_q;        // d.d
@@ -122,10 +162,31 @@ module tess_cpg_edge #(
     assign s_now[c] = $signed({na[c][W-1], na[c]}) + $signed({nb[c][W-1], nb[c]});
   end
 
+  // |d_c|, an operand of the first division's dividend: from d_q, or registered with d.
+  (* mem2reg *) logic [W:0] d_abs [3];
+  if (PR) begin : g_dabs_reg
+    (* mem2reg *) logic [W:0] dabs_q [3];
+    always_ff @(posedge clk_i) begin
+      for (int c = 0; c < 3; c++) begin
+        if (st_edge0) dabs_q[c] <= d_now[c][W] ? -d_now[c] : d_now[c];
+      end
+    end
+    for (genvar c = 0; c < 3; c++) begin : g_c
+      assign d_abs[c] = dabs_q[c];
+    end
+  end else begin : g_dabs_comb
+    for (genvar c = 0; c < 3; c++) begin : g_c
+      assign d_abs[c] = d_q[c][W] ? -d_q[c] : d_q[c];
+    end
+  end
+
   // ------------------------------------------------------------------ general slice multipliers
-  (* mem2reg *) logic signed [DotW-1:0]  mul_a [3];
-  (* mem2reg *) logic signed [MulBW-1:0] mul_b [3];
-  (* mem2reg *) logic signed [ProdW-1:0] prod [3];
+  // The operands are an AND-OR over the steps (at most one is active): no priority chain in
+  // front of the multiplier.
+  (* mem2reg *) logic [DotW-1:0]         mul_a [3];
+  (* mem2reg *) logic [MulBW-1:0]        mul_b [3];
+  (* mem2reg *) logic signed [ProdW-1:0] prod [3];  // this cycle's product
+  (* mem2reg *) logic signed [ProdW-1:0] prd [3];   // the product the using step sees
 
   // round(2^G / 12) = floor((2^G + 6) / 12), round(2^G / 3) = floor((2^G + 1) / 3)
   localparam logic [G:0] PowG = {1'b1, {G{1'b0}}};
@@ -134,46 +195,21 @@ module tess_cpg_edge #(
   localparam logic signed [MulBW-1:0] KTwelfth = MulBW'(KTwelfthU);
 
   for (genvar c = 0; c < 3; c++) begin : g_mul
-    logic [W:0] d_abs;
-    assign d_abs = d_q[c][W] ? -d_q[c] : d_q[c];
-    always_comb begin
-      mul_a[c] = '0;
-      mul_b[c] = '0;
-      if (st_dot_a) begin
-        mul_a[c] = DotW'(d_now[c]);
-        mul_b[c] = MulBW'($signed(na[c]));
-      end else if (st_mul_a) begin
-        mul_a[c] = $signed(wa_q);
-        mul_b[c] = MulBW'($signed(na[c]));
-      end else if (st_dot_b) begin
-        mul_a[c] = DotW'($signed(d_q[c]));
-        mul_b[c] = MulBW'($signed(nb[c]));
-      end else if (st_mul_b) begin
-        mul_a[c] = $signed(wb_q);
-        mul_b[c] = MulBW'($signed(nb[c]));
-      end else if (st_dot_s) begin
-        mul_a[c] = DotW'($signed(d_q[c]));
-        mul_b[c] = MulBW'($signed(s_q[c]));
-      end else if (st_dot_d) begin
-        mul_a[c] = DotW'($signed(d_q[c]));
-        mul_b[c] = MulBW'($signed(d_q[c]));
-      end else if (st_num) begin
-        mul_a[c] = $signed(pdot_q);                    // |d.s|
-        mul_b[c] = $signed(MulBW'(d_abs));             // |d_c|
-      end else if (st_mm) begin
-        mul_a[c] = DotW'($signed(m_q[c]));
-        mul_b[c] = MulBW'($signed(m_q[c]));
-      end else if (b111_i) begin
-        mul_a[c] = DotW'($signed(x111_i[c*X111W +: X111W]));
-        mul_b[c] = KTwelfth;
+    assign prod[c] = $signed(mul_a[c]) * $signed(mul_b[c]);
+    if (PR) begin : g_prod_reg
+      logic signed [ProdW-1:0] prod_q;
+      always_ff @(posedge clk_i) begin
+        prod_q <= prod[c];
       end
+      assign prd[c] = prod_q;
+    end else begin : g_prod_now
+      assign prd[c] = prod[c];
     end
-    assign prod[c] = mul_a[c] * mul_b[c];
   end
 
   // Sum over the slices: the dot products (exact, DotW bits suffice).
   logic [DotW-1:0] dot;
-  assign dot = prod[0][DotW-1:0] + prod[1][DotW-1:0] + prod[2][DotW-1:0];
+  assign dot = prd[0][DotW-1:0] + prd[1][DotW-1:0] + prd[2][DotW-1:0];
 
   // ------------------------------------------------------------------ tangent points
   // num = (2Pn + Pf) 2^2F -/+ w Nn; tangent = sat(round_half_up(num * round(2^G/3), 2F + G)).
@@ -190,20 +226,29 @@ module tess_cpg_edge #(
     assign unused_krnd = ^krnd[KShift-1:0];
     assign chord_a  = $signed({pa[c][W-1], pa[c], 1'b0}) + $signed({{2{pb[c][W-1]}}, pb[c]});
     assign chord_b  = $signed({pb[c][W-1], pb[c], 1'b0}) + $signed({{2{pa[c][W-1]}}, pa[c]});
-    assign chord    = st_mul_a ? chord_a : chord_b;
+    assign chord    = use_mul_a ? chord_a : chord_b;
     assign chord_sh = NumW'(chord) <<< (2 * F);
-    assign wn       = prod[c][NumW-1:0];
-    assign num_next[c] = st_mul_a ? chord_sh - wn : chord_sh + wn;
+    assign wn       = prd[c][NumW-1:0];
+    assign num_next[c] = use_mul_a ? chord_sh - wn : chord_sh + wn;
     assign kprod    = $signed(num_q[c]) * KThird;
-    assign krnd     = kprod + KHalf;
+    if (PR) begin : g_kprod_reg
+      // With registered products the constant multiplication has a cycle of its own too.
+      logic signed [KProdW-1:0] kprod_q;
+      always_ff @(posedge clk_i) begin
+        kprod_q <= kprod;
+      end
+      assign krnd = kprod_q + KHalf;
+    end else begin : g_kprod_now
+      assign krnd = kprod + KHalf;
+    end
     tess_sat #(.InW(KProdW - KShift), .OutW(W)) u_sat (
       .x_i  (krnd[KProdW-1:KShift]),
       .y_o  (tangent_o[c*W +: W]),
       .sat_o(tangent_sat[c])
     );
   end
-  assign tangent_a_o = st_dot_b && keep_a_i;
-  assign tangent_b_o = st_dot_s && keep_b_i;
+  assign tangent_a_o = st_tan_a && keep_a_i;
+  assign tangent_b_o = st_tan_b && keep_b_i;
 
   // ------------------------------------------------------------------ b111
   // b111 = sat(round_half_up((3 sum(t) - 2 sum(P)) * round(2^G/12), G))
@@ -213,13 +258,14 @@ module tess_cpg_edge #(
     logic [ProdW-1:0]        brnd;
     logic                    unused_brnd;
     assign unused_brnd = ^brnd[G-1:0];
-    assign brnd    = prod[c] + BHalf;
+    assign brnd    = prd[c] + BHalf;
     tess_sat #(.InW(ProdW - G), .OutW(W)) u_sat (
       .x_i  (brnd[ProdW-1:G]),
       .y_o  (b111_o[c*W +: W]),
       .sat_o(b111_sat[c])
     );
   end
+  assign b111_valid_o = use_b111;
 
   // ------------------------------------------------------------------ dividers, square root
   (* mem2reg *) logic [W-1:0]    div_res [3];
@@ -228,7 +274,7 @@ module tess_cpg_edge #(
   logic [DenW-1:0] div_den;
   logic            div_load, div_step, div_first;
   assign div_den   = st_div2 ? DenW'(root) : q_q;
-  assign div_load  = st_num || st_mm;
+  assign div_load  = st_load1 || st_load2;
   assign div_step  = st_div1 || st_div2;
   assign div_first = st_div1_first || st_div2_first;
 
@@ -238,8 +284,8 @@ module tess_cpg_edge #(
     logic [W-1:0]    m_abs;
     assign m_abs = m_q[c][W-1] ? -m_q[c] : m_q[c];
     always_comb begin
-      if (st_num) begin
-        mag = prod[c][MagW-1:0];               // |d_c| |d.s|
+      if (st_load1) begin
+        mag = prd[c][MagW-1:0];                // |d_c| |d.s|
         neg = pneg_q ^ d_q[c][W];
       end else begin
         mag = MagW'(m_abs) << F;               // |m_c| 2^F
@@ -262,7 +308,7 @@ module tess_cpg_edge #(
 
   tess_isqrt #(.RootW(W), .DigitBits(DigitBits)) u_isqrt (
     .clk_i (clk_i),
-    .load_i(st_mm),
+    .load_i(st_load2),
     .x_i   (dot[2*W-1:0]),
     .step_i(st_sqrt),
     .root_o(root)
@@ -283,24 +329,108 @@ module tess_cpg_edge #(
     );
   end
 
+  // ------------------------------------------------------------------ multiplier operands
+  // The operands. Without registered products they are selected in the step that issues the
+  // product (d.Na in step 0 straight from Pb - Pa, its select nearest the multiplier). With
+  // registered products they are registered too, selected at the end of the step before from
+  // the values the sources take then (every product is issued in step 1 or later; the step
+  // after an edge's last is another edge's step 0 or b111's first), so that the multiplier
+  // has a cycle to itself.
+  if (PR) begin : g_ops_reg
+    logic more;  // the next cycle is step step_i + 1 of this edge
+    logic nx_dot_a, nx_mul_a, nx_dot_b, nx_mul_b, nx_dot_s, nx_dot_d, nx_num, nx_mm, nx_b111;
+    logic nx_dq_a;
+    logic [DotW-1:0] pdot_abs;
+    assign more     = edge_i && !last_i;
+    assign nx_dot_a = more && (step_i == StepW'(SDotA - 1));
+    assign nx_mul_a = more && (step_i == StepW'(SMulA - 1));
+    assign nx_dot_b = more && (step_i == StepW'(SDotB - 1));
+    assign nx_mul_b = more && (step_i == StepW'(SMulB - 1));
+    assign nx_dot_s = more && (step_i == StepW'(SDotS - 1));
+    assign nx_dot_d = more && (step_i == StepW'(SDotD - 1));
+    assign nx_num   = more && (step_i == StepW'(SNum - 1));
+    assign nx_mm    = more && (step_i == StepW'(SMM - 1));
+    assign nx_b111  = b111_next_i;
+    assign nx_dq_a  = nx_dot_b || nx_dot_s || nx_dot_d;
+    assign pdot_abs = pdot_q[DotW-1] ? -pdot_q : pdot_q;  // what step SAbs writes
+    for (genvar c = 0; c < 3; c++) begin : g_c
+      logic [DotW-1:0]  opa_q;
+      logic [MulBW-1:0] opb_q;
+      always_ff @(posedge clk_i) begin
+        opa_q <= ({DotW{nx_dot_a}}            & DotW'(d_now[c]))
+               | ({DotW{nx_dq_a}}             & DotW'($signed(d_q[c])))
+               | ({DotW{nx_mul_a || nx_mul_b}} & dot)   // wa = d.Na, wb = d.Nb, as they are summed
+               | ({DotW{nx_num}}              & pdot_abs)
+               | ({DotW{nx_mm}}               & DotW'($signed(m_next[c*W +: W])))
+               | ({DotW{nx_b111}}             & DotW'($signed(x111_next_i[c*X111W +: X111W])));
+        opb_q <= ({MulBW{nx_dot_a || nx_mul_a}} & MulBW'($signed(na[c])))
+               | ({MulBW{nx_dot_b || nx_mul_b}} & MulBW'($signed(nb[c])))
+               | ({MulBW{nx_dot_s}}             & MulBW'($signed(s_q[c])))
+               | ({MulBW{nx_dot_d}}             & MulBW'($signed(d_q[c])))
+               | ({MulBW{nx_num}}               & MulBW'(d_abs[c]))  // |d_c|
+               | ({MulBW{nx_mm}}                & MulBW'($signed(m_next[c*W +: W])))
+               | ({MulBW{nx_b111}}              & KTwelfth);
+      end
+      assign mul_a[c] = opa_q;
+      assign mul_b[c] = opb_q;
+    end
+    logic unused_ops;
+    assign unused_ops = (^x111_i) ^ use_dot_a ^ use_dot_b;
+  end else begin : g_ops_now
+    logic iss_dot_a, iss_mul_a, iss_dot_b, iss_mul_b, iss_dot_s, iss_dot_d, iss_num, iss_mm;
+    logic iss_b111, dq_op_a;
+    logic [DotW-1:0] wa_q, wb_q;  // d.Na, d.Nb
+    always_ff @(posedge clk_i) begin
+      if (use_dot_a) wa_q <= dot;
+      if (use_dot_b) wb_q <= dot;
+    end
+    assign iss_dot_a = edge_i && (step_i == StepW'(SDotA));
+    assign iss_mul_a = edge_i && (step_i == StepW'(SMulA));
+    assign iss_dot_b = edge_i && (step_i == StepW'(SDotB));
+    assign iss_mul_b = edge_i && (step_i == StepW'(SMulB));
+    assign iss_dot_s = edge_i && (step_i == StepW'(SDotS));
+    assign iss_dot_d = edge_i && (step_i == StepW'(SDotD));
+    assign iss_num   = edge_i && (step_i == StepW'(SNum));
+    assign iss_mm    = edge_i && (step_i == StepW'(SMM));
+    assign iss_b111  = b111_i && (step_i == StepW'(0));
+    assign dq_op_a   = iss_dot_b || iss_dot_s || iss_dot_d;
+    for (genvar c = 0; c < 3; c++) begin : g_c
+      logic [DotW-1:0] reg_op_a;  // the operands held in registers
+      assign reg_op_a = ({DotW{dq_op_a}}   & DotW'($signed(d_q[c])))
+                      | ({DotW{iss_mul_a}} & wa_q)
+                      | ({DotW{iss_mul_b}} & wb_q)
+                      | ({DotW{iss_num}}   & pdot_q)            // |d.s|
+                      | ({DotW{iss_mm}}    & DotW'($signed(m_q[c])))
+                      | ({DotW{iss_b111}}  & DotW'($signed(x111_i[c*X111W +: X111W])));
+      assign mul_a[c] = iss_dot_a ? DotW'(d_now[c]) : reg_op_a;
+      assign mul_b[c] = ({MulBW{iss_dot_a || iss_mul_a}} & MulBW'($signed(na[c])))
+                      | ({MulBW{iss_dot_b || iss_mul_b}} & MulBW'($signed(nb[c])))
+                      | ({MulBW{iss_dot_s}}              & MulBW'($signed(s_q[c])))
+                      | ({MulBW{iss_dot_d}}              & MulBW'($signed(d_q[c])))
+                      | ({MulBW{iss_num}}                & MulBW'(d_abs[c]))  // |d_c|
+                      | ({MulBW{iss_mm}}                 & MulBW'($signed(m_q[c])))
+                      | ({MulBW{iss_b111}}               & KTwelfth);
+    end
+    logic unused_ops;
+    assign unused_ops = last_i ^ b111_next_i ^ (^x111_next_i);
+  end
+
   // ------------------------------------------------------------------ datapath registers
   always_ff @(posedge clk_i) begin
-    if (st_dot_a) begin
-      wa_q <= dot;
+    if (st_edge0) begin
       for (int c = 0; c < 3; c++) begin
         d_q[c] <= d_now[c];
         s_q[c] <= s_now[c];
       end
     end
-    if (st_dot_b) wb_q <= dot;
-    if (st_dot_s) pdot_q <= dot;
-    if (st_dot_d) begin
+    if (use_dot_s) pdot_q <= dot;
+    if (st_abs) begin
       q_q    <= dot[DenW-1:0];
       pdot_q <= pdot_q[DotW-1] ? -pdot_q : pdot_q;
       pneg_q <= pdot_q[DotW-1];
     end
     for (int c = 0; c < 3; c++) begin
-      if (st_mul_a || st_mul_b) num_q[c] <= num_next[c];
+      if (use_mul_a || use_mul_b) num_q[c] <= num_next[c];
       if (st_div1_last) t_q[c] <= div_res[c];
       if (st_m) m_q[c] <= m_next[c*W +: W];
     end
@@ -322,7 +452,7 @@ module tess_cpg_edge #(
     if ((st_div1_last || st_div2_last) && (div_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
     if ((st_div1_last || st_div2_last) && (div_dbz != '0)) flags_o |= tess_pkg::FlagDivByZero;
     if (st_m && (m_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
-    if (b111_i && (b111_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
+    if (use_b111 && (b111_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
   end
 
 endmodule

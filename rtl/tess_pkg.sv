@@ -19,6 +19,7 @@ package tess_pkg;
   localparam int unsigned CpgLanes      = 1;   // CPG edge lanes: 1 (edges in turn) or 3 (at once)
   localparam int unsigned CpgDigitBits  = 1;   // r: CPG divider / square-root bits per cycle
   localparam int unsigned CpgCopies     = 1;   // Mc: CPGs taking successive triangles in turn
+  localparam int unsigned CpgProductReg = 0;   // 1: the CPG's multiplier products are registered
   localparam int unsigned CpgTags       = 0;   // 1: the input stream carries scalar tags (STPN)
   // Deliberate faults that prove the co-simulation checker can fail:
   // 1 = INT rounding drops the +half (floor instead of round half up);

@@ -17,6 +17,7 @@ module tess_unit #(
   parameter int unsigned CpBuffers     = tess_pkg::CpBuffers,
   parameter int unsigned CpgLanes      = tess_pkg::CpgLanes,
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
+  parameter int unsigned CpgProductReg = tess_pkg::CpgProductReg,
   parameter int unsigned CpgTags       = tess_pkg::CpgTags,
   parameter int unsigned CpgCopies     = tess_pkg::CpgCopies,
   parameter int unsigned InjectBug     = tess_pkg::InjectBug,
@@ -120,6 +121,7 @@ module tess_unit #(
     .CoordFracBits(CoordFracBits),
     .CpgLanes     (CpgLanes),
     .CpgDigitBits (CpgDigitBits),
+    .CpgProductReg(CpgProductReg),
     .CpgTags      (CpgTags),
     .CpgCopies    (CpgCopies)
   ) u_cpgs (

@@ -654,9 +654,15 @@ def copies_of(r):
     return r.get("cpg_copies") or 1
 
 
+def registered(r):
+    """Registered CPG products at INT latency Λ (grids cpg_budget*): the within-budget design."""
+    return bool(r.get("cpg_product_reg") or 0)
+
+
 def copies_label(r):
     lanes, bits = cpg_variant(r)
-    return f"{lanes}x{bits}" + (f" ×{copies_of(r)}" if copies_of(r) > 1 else "")
+    return (f"{lanes}x{bits}" + (f" ×{copies_of(r)}" if copies_of(r) > 1 else "") +
+            (f" [reg, Λ {r['int_latency']}]" if registered(r) else ""))
 
 
 # The pick of a grid cell: the cheapest configuration within this share of the fastest one.
@@ -679,19 +685,28 @@ def fig_cpg_copies(rows, out):
     g = [r for r in in_grid(rows, "cpg_copies") if r.get("cost_time_throughput") is not None]
     if not g:
         return out.skip("CPG copies", "no costed rows of grid 'cpg_copies' (run scripts/costs.py)")
+    # The same workloads with registered CPG products at INT latency 3 (grids cpg_budget*): the
+    # configurations that fit the depth budget, ranked beside the others.
+    g = g + [r for r in in_grid(rows, "cpg_budget") if r.get("cost_time_throughput") is not None]
     budget = yosys_cost.DEPTH_BUDGET
     Ls = distinct(g, "tess_factor")
     K = g[0]["gpe_cycles"]
-    variants = sorted({cpg_variant(r) for r in g})
+
+    def variant(r):
+        return cpg_variant(r) + (registered(r),)
+
+    variants = sorted({variant(r) for r in g})
     fig, axes = plt.subplots(2, len(Ls), figsize=(4.2 * len(Ls), 7.4), squeeze=False)
     for j, L in enumerate(Ls):
         for i, (key, ylabel) in enumerate((("throughput", "vertices / cycle"),
                                            ("cost_time_throughput", f"vertices / budget cycle ({budget} levels)"))):
             ax = axes[i][j]
             for v_i, v in enumerate(variants):
-                pts = sorted((r for r in g if r["tess_factor"] == L and cpg_variant(r) == v), key=copies_of)
+                pts = sorted((r for r in g if r["tess_factor"] == L and variant(r) == v), key=copies_of)
+                style = (":^" if v[2] else "-o") if v[0] == 1 else (":v" if v[2] else "--s")
                 ax.plot([r["cost_unit_transistors"] / 1e6 for r in pts], [r[key] for r in pts],
-                        "-o" if v[0] == 1 else "--s", ms=3, color=f"C{v_i % 10}", label=cpg_label(v))
+                        style, ms=3, color=f"C{v_i % 10}",
+                        label=cpg_label(v[:2]) + (", registered, Λ 3" if v[2] else ""))
                 for r in pts:
                     ax.annotate(str(copies_of(r)), (r["cost_unit_transistors"] / 1e6, r[key]),
                                 textcoords="offset points", xytext=(2, 2), fontsize=5)
@@ -727,20 +742,22 @@ def fig_cpg_copies(rows, out):
             "per time: the same at the configuration's clock (throughput × K per budget cycle)",
             "per time and transistor: best (10⁻³ vertices per budget cycle per Mtr)", "picks"]
     cells = [(f"L = {L}", [r for r in g if r["tess_factor"] == L]) for L in Ls]
-    a = [r for r in in_grid(rows, "cpg_copies_adaptive") if r.get("cost_time_throughput") is not None]
+    a = [r for r in in_grid(rows, "cpg_copies_adaptive") + in_grid(rows, "cpg_budget_adaptive")
+         if r.get("cost_time_throughput") is not None]
     for cam in sorted(distinct(a, "camera"), key=camera_distance):
         pts = [r for r in a if r["camera"] == cam]
         cells.append((f"adaptive, view distance {fmt(camera_distance(cam), 3)} "
                       f"({fmt(pts[0]['workload.vertices_per_patch.mean'], 3)} vertices/patch)", pts))
     out.table("CPG copies: what to pick per cycle and per unit of time", cols, pick_rows(cells),
-              note=f"Grids `cpg_copies` and `cpg_copies_adaptive` ({workload(g, 'mesh', 'normals', 'int_blocks', 'gpe_cycles', 'cp_buffers')}); "
+              note=f"Grids `cpg_copies`, `cpg_copies_adaptive` (INT latency 1) and `cpg_budget`, `cpg_budget_adaptive` "
+                   f"(registered CPG products, INT latency 3: [reg, Λ 3]) ({workload(g, 'mesh', 'normals', 'int_blocks', 'gpe_cycles', 'cp_buffers')}); "
                    f"Ec×r ×Mc: edge lanes, digit bits, copies. Time: each configuration at its own clock of "
                    f"max({budget}, its deepest path) gate levels (scripts/yosys_cost.py, DEPTH_BUDGET), in units of "
                    f"the budget's cycle; K counts cycles of the unit's clock.")
 
     # Every configuration: C, copies, the start interval, cost, depth, per-cycle and per-time rates.
     table = []
-    for r in sorted((r for r in g if r["tess_factor"] == Ls[0]), key=lambda r: (cpg_variant(r), copies_of(r))):
+    for r in sorted((r for r in g if r["tess_factor"] == Ls[0]), key=lambda r: (variant(r), copies_of(r))):
         table.append([copies_label(r), r["cpg_cycles_per_triangle"], copies_of(r),
                       math.ceil((r["cpg_cycles_per_triangle"] + 1) / copies_of(r)),
                       fmt(r["cost_cpg_transistors"] / 1e6, 4), fmt(r["cost_unit_transistors"] / 1e6, 4),

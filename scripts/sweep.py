@@ -501,9 +501,11 @@ def expected_cycles(params, triangles, sch):
                     and r["coord_frac_bits"] == p["coord_frac_bits"]), max(r["cycles"] for r in rows))
         # A faster CPG variant: its C at the default format, scaled to this format's C.
         variants = sch.get("cpg_cycles_by_variant", [])
-        base = next((r for r in variants if r["cpg_lanes"] == 1 and r["cpg_digit_bits"] == 1), None)
+        base = next((r for r in variants if r["cpg_lanes"] == 1 and r["cpg_digit_bits"] == 1
+                     and r.get("cpg_product_reg", 0) == 0), None)
         this = next((r for r in variants if r["cpg_lanes"] == p.get("cpg_lanes", 1)
-                     and r["cpg_digit_bits"] == p.get("cpg_digit_bits", 1)), None)
+                     and r["cpg_digit_bits"] == p.get("cpg_digit_bits", 1)
+                     and r.get("cpg_product_reg", 0) == p.get("cpg_product_reg", 0)), None)
         if base and this and mode in this:
             cpg = cpg * this[mode] / base[mode]
     per_vertex = max(ops / int(p["int_blocks"]), k, cpg / patch, 1.0)

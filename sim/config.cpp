@@ -68,7 +68,7 @@ void UnitConfig::validate(const std::string& source) const {
                      "value " + std::to_string(cpg.digit_bits) + " exceeds the coordinate width " +
                          std::to_string(format.coord_width()) + " (a whole quotient in one cycle)");
   if (cpg_mapping == CpgMapping::Gpe && !(cpg == CpgVariant{}))
-    throw InputError(source, "cpg_lanes / cpg_digit_bits / cpg_copies",
+    throw InputError(source, "cpg_lanes / cpg_digit_bits / cpg_copies / cpg_product_reg",
                      "describe the dedicated CPG; with cpg_mapping gpe the CPG takes cpg_gpe_cycles");
   if (!hardware_supports(normals))
     throw InputError(source, "normals",

@@ -187,16 +187,21 @@ int cpg_digit_steps(const NumberFormat& f, int digit_bits) {
   return (f.coord_width() + digit_bits - 1) / digit_bits;
 }
 
-int cpg_edge_cycles(NormalMode mode, const NumberFormat& f, int digit_bits) {
+int cpg_edge_cycles(NormalMode mode, const NumberFormat& f, int digit_bits, bool product_reg) {
   const int D = cpg_digit_steps(f, digit_bits);
-  // 6 cycles of geometry: d and s; three dot products (d.s, d.Na, d.Nb); two tangent points.
-  constexpr int kGeometry = 6;
+  // Geometry: d and s; the dot products d.Na, d.Nb, d.s, d.d; the two tangent points (6 steps).
+  // Registered products (rtl/tess_cpg_edge.sv): a step of its own for d, every product used a
+  // step after it is issued and a tangent point's division by 3 a step after its numerator, so
+  // the tangent point near b leaves in step 7 and reaches b111's sum in step 8; the first
+  // division starts in step 10 instead of 7 (d's step, the sum of d.d, the dividend's product).
+  const int wait = product_reg ? 1 : 0;  // from a product's issue to its use
+  const int first_division = product_reg ? 10 : 7;
   switch (mode) {
-    case NormalMode::Linear: return kGeometry;
-    // + d.d, D-cycle division (3 slices), m = s - k t
-    case NormalMode::Reflect: return kGeometry + 1 + D + 1;
-    // + m.m, D-cycle square root, D-cycle division (3 slices)
-    case NormalMode::Quadratic: return kGeometry + 1 + D + 1 + 1 + D + D;
+    case NormalMode::Linear: return product_reg ? 9 : 6;
+    // + D-cycle division (3 slices), m = s - k t
+    case NormalMode::Reflect: return first_division + D + 1;
+    // + m.m (and its sum), D-cycle square root, D-cycle division (3 slices)
+    case NormalMode::Quadratic: return first_division + D + 1 + 1 + wait + D + D;
     case NormalMode::Derivative: break;
   }
   throw std::invalid_argument("normal mode not implemented by the unit");
@@ -229,10 +234,10 @@ int cpg_tag_cycles(const TriangleFx& tri, const NumberFormat& f, const CpgVarian
 
 int cpg_cycles(NormalMode mode, const NumberFormat& f, const CpgVariant& v) {
   if (v.lanes != 1 && v.lanes != 3) throw std::invalid_argument("CPG lanes must be 1 or 3");
-  // the edges (in turn or at once), then one cycle for b111 and one for the write into the
-  // control-point buffer
+  // the edges (in turn or at once), then one cycle for b111 (two with registered products) and
+  // one for the write into the control-point buffer
   const int edges_in_turn = v.lanes == 1 ? 3 : 1;
-  return edges_in_turn * cpg_edge_cycles(mode, f, v.digit_bits) + 2;
+  return edges_in_turn * cpg_edge_cycles(mode, f, v.digit_bits, v.product_reg != 0) + (v.product_reg ? 3 : 2);
 }
 
 Partitioning tri_partitioning(TriPattern pattern) {

@@ -84,6 +84,7 @@ struct CpgVariant {
   int lanes = 1;       // edge lanes: 1 walks the three edges in turn, 3 computes them at once
   int digit_bits = 1;  // r: quotient / root bits the dividers and the square root retire a cycle
   int copies = 1;      // CPGs taking successive triangles round robin (sim/blocks/cpg.hpp CpgArray)
+  int product_reg = 0; // 1: the multipliers' products are registered (more cycles, a shorter path)
   bool operator==(const CpgVariant&) const = default;
 };
 inline constexpr int kMaxCpgDigitBits = 32;
@@ -92,8 +93,10 @@ inline constexpr int kMaxCpgDigitBits = 32;
 int cpg_digit_steps(const NumberFormat& fmt, int digit_bits);
 // Cycles the dedicated CPG spends on one edge (E) and on one triangle (C), accept cycle
 // excluded (see the doc): the edges in turn (one lane) or at once (three lanes), then the
-// centre point and the write.
-int cpg_edge_cycles(NormalMode mode, const NumberFormat& fmt, int digit_bits = 1);
+// centre point and the write. Registered products (product_reg) add steps to an edge (3 linear,
+// 3 reflect, 4 quadratic) and a cycle to the centre point (rtl/tess_cpg_edge.sv lists both
+// schedules).
+int cpg_edge_cycles(NormalMode mode, const NumberFormat& fmt, int digit_bits = 1, bool product_reg = false);
 int cpg_cycles(NormalMode mode, const NumberFormat& fmt, const CpgVariant& variant = {});
 // Cycles a CPG that takes scalar tags adds for this triangle (0 when its tags are neutral;
 // docs/microarchitecture.md §5): the face normal, per non-neutral corner its normalizations

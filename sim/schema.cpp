@@ -143,12 +143,14 @@ nlohmann::json schema_json() {
         per_format("cycles", [m](const NumberFormat& fmt) { return cpg_cycles(m, fmt); });
   // C of every CPG variant at the default coordinate format (sim::cpg_cycles).
   json cpg_variants_json = json::array();
-  for (int lanes : {1, 3}) {
-    for (int r = 1; r <= defaults.format.coord_width(); ++r) {
-      json row = {{"cpg_lanes", lanes}, {"cpg_digit_bits", r}};
-      for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear})
-        row[std::string(to_string(m))] = cpg_cycles(m, defaults.format, {lanes, r});
-      cpg_variants_json.push_back(row);
+  for (int product_reg : {0, 1}) {
+    for (int lanes : {1, 3}) {
+      for (int r = 1; r <= defaults.format.coord_width(); ++r) {
+        json row = {{"cpg_lanes", lanes}, {"cpg_digit_bits", r}, {"cpg_product_reg", product_reg}};
+        for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear})
+          row[std::string(to_string(m))] = cpg_cycles(m, defaults.format, {lanes, r, 1, product_reg});
+        cpg_variants_json.push_back(row);
+      }
     }
   }
   // The arithmetic position bound (sim::position_error_budget, docs/number-formats.md §5.1) in

@@ -193,7 +193,7 @@ TEST(CosimLatency3, AgreesInEveryModeAndUnderBackpressure) {
         o.variant = "n3_lat3";
         o.unit.int_latency = 3;
         o.unit.te_contexts = 6;
-        o.unit.cpg = {3, 5, 2};
+        o.unit.cpg = {3, 5, 2, 1};
         o.unit.cpg_tags = 1;
         o.unit.normals = mode;
         const auto stream = random_triangles(24, o.seed, o.unit.format, 6, 0.1, 1.0, tagged);
@@ -245,7 +245,7 @@ TEST(CosimWave, ExplicitWindowOfAPassingRunWithAMatchingLayout) {
     int n, latency, contexts;
     sim::CpgVariant cpg;
   };
-  for (const Build b : {Build{"n2", 2, 1, 4, {}}, Build{"n3_lat3", 3, 3, 6, {3, 5, 2}}}) {
+  for (const Build b : {Build{"n2", 2, 1, 4, {}}, Build{"n3_lat3", 3, 3, 6, {3, 5, 2, 1}}}) {
     CosimOptions o = options(b.n, 0.2, 2, 7);
     o.variant = b.name;
     o.unit.int_latency = b.latency;
@@ -292,7 +292,7 @@ TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
     int n;
     sim::CpgVariant cpg;
   };
-  for (const Build b : {Build{"n1_r4", 1, {1, 4, 3}}, Build{"n2_l3r8", 2, {3, 8, 2}}, Build{"n4_l3r24", 4, {3, 24, 5}}}) {
+  for (const Build b : {Build{"n1_r4", 1, {1, 4, 3}}, Build{"n2_l3r8", 2, {3, 8, 2, 1}}, Build{"n4_l3r24", 4, {3, 24, 5, 1}}}) {
     for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
       for (const Backpressure bp : {Backpressure{"none", 0.0, 1}, Backpressure{"random", 0.3, 2}}) {
         for (const bool tagged : {false, true}) {

@@ -87,7 +87,7 @@ TEST(RandomD3D11Cosim, TagTakingBuildsWithD3D11Patterns) {
     int n, latency, contexts;
     sim::CpgVariant cpg;
   };
-  for (const Build& b : {Build{"n1_r4", 1, 1, 4, {1, 4, 3}}, Build{"n3_lat3", 3, 3, 6, {3, 5, 2}}}) {
+  for (const Build& b : {Build{"n1_r4", 1, 1, 4, {1, 4, 3}}, Build{"n3_lat3", 3, 3, 6, {3, 5, 2, 1}}}) {
     CosimOptions o = options(b.name, b.n, NormalMode::Quadratic, 0.2, 21);
     o.unit.int_latency = b.latency;
     o.unit.te_contexts = b.contexts;

@@ -21,9 +21,9 @@ struct TagBuild {
   sim::CpgVariant cpg;
 };
 constexpr TagBuild kTagBuilds[] = {{"n1_r4", 1, 1, 4, {1, 4, 3}},
-                                   {"n2_l3r8", 2, 1, 4, {3, 8, 2}},
-                                   {"n3_lat3", 3, 3, 6, {3, 5, 2}},
-                                   {"n4_l3r24", 4, 1, 4, {3, 24, 5}}};
+                                   {"n2_l3r8", 2, 1, 4, {3, 8, 2, 1}},
+                                   {"n3_lat3", 3, 3, 6, {3, 5, 2, 1}},
+                                   {"n4_l3r24", 4, 1, 4, {3, 24, 5, 1}}};
 
 CosimOptions tag_options(const TagBuild& b, NormalMode mode, double stall, std::uint64_t seed) {
   CosimOptions o;

@@ -252,10 +252,10 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   EXPECT_EQ(lat3->int_blocks(), 3);
   EXPECT_EQ(lat3->contexts(), 6);
   EXPECT_EQ(lat3->int_latency(), 3);
-  EXPECT_EQ(lat3->config().cpg, (sim::CpgVariant{3, 5, 2}));
+  EXPECT_EQ(lat3->config().cpg, (sim::CpgVariant{3, 5, 2, 1}));
   EXPECT_EQ(rtl::make_rtl_unit("n1_r4")->config().cpg, (sim::CpgVariant{1, 4, 3}));
-  EXPECT_EQ(rtl::make_rtl_unit("n2_l3r8")->config().cpg, (sim::CpgVariant{3, 8, 2}));
-  EXPECT_EQ(rtl::make_rtl_unit("n4_l3r24")->config().cpg, (sim::CpgVariant{3, 24, 5}));
+  EXPECT_EQ(rtl::make_rtl_unit("n2_l3r8")->config().cpg, (sim::CpgVariant{3, 8, 2, 1}));
+  EXPECT_EQ(rtl::make_rtl_unit("n4_l3r24")->config().cpg, (sim::CpgVariant{3, 24, 5, 1}));
   // The free parameters away from their defaults: FIFO depths and widths.
   const sim::HardwareConfig w28 = rtl::make_rtl_unit("n2_w28b20")->config();
   EXPECT_EQ(w28.tri_fifo_depth, 3);
@@ -275,7 +275,7 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   sim::HardwareConfig hw;
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), "n2");
   EXPECT_EQ(rtl::find_rtl_variant(hw, true), "n2_verif");
-  hw.cpg = {3, 8, 2};
+  hw.cpg = {3, 8, 2, 1};
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), std::nullopt) << "n2_l3r8 takes scalar tags";
   hw.cpg_tags = 1;
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), "n2_l3r8");

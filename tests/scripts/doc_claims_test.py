@@ -73,7 +73,8 @@ def sweep_points(check):
     small_spec, small = points("small")
     full_spec, full = points("full")
     _, adaptive = points("adaptive")
-    cpg_grids = {"cpg", "cpg_adaptive", "cpg_fast", "cpg_copies", "cpg_copies_adaptive", "cpg_copies_fast"}
+    cpg_grids = {"cpg", "cpg_adaptive", "cpg_fast", "cpg_copies", "cpg_copies_adaptive", "cpg_copies_fast", "cpg_budget",
+                 "cpg_budget_adaptive"}
     study = [(p, g) for p, g in small if not cpg_grids & set(g)]
     for name, pts, csv_path in (("small", small, "docs/results/results.csv"),
                                 ("full", full, "docs/results/full/results.csv"),

@@ -226,14 +226,17 @@ TEST(Schema, CpgCyclesAreSimCpgCyclesAndIgnoreBaryBits) {
 
 TEST(Schema, CpgCyclesByVariantAreSimCpgCycles) {
   const json rows = schema_json()["cpg_cycles_by_variant"];
-  ASSERT_EQ(rows.size(), 2u * static_cast<std::size_t>(NumberFormat{}.coord_width()));
+  ASSERT_EQ(rows.size(), 4u * static_cast<std::size_t>(NumberFormat{}.coord_width()));
   for (const json& r : rows) {
-    const CpgVariant v{r["cpg_lanes"].get<int>(), r["cpg_digit_bits"].get<int>()};
+    const CpgVariant v{r["cpg_lanes"].get<int>(), r["cpg_digit_bits"].get<int>(), 1, r["cpg_product_reg"].get<int>()};
     for (NormalMode m : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear})
       EXPECT_EQ(r[std::string(to_string(m))].get<int>(), cpg_cycles(m, NumberFormat{}, v));
   }
   EXPECT_EQ(rows[0]["quadratic"], 245);            // one lane, one bit a cycle
-  EXPECT_EQ(rows.back()["quadratic"], 12 + 2);     // three lanes, a whole quotient a cycle
+  EXPECT_EQ(rows[2 * 24 - 1]["quadratic"], 12 + 2);  // three lanes, a whole quotient a cycle
+  // Registered products: 4 more steps per edge and one more b111 cycle (rtl/tess_cpg_edge.sv).
+  EXPECT_EQ(rows[2 * 24]["quadratic"], 3 * (3 * 24 + 13) + 3);
+  EXPECT_EQ(rows.back()["linear"], 9 + 3);
 }
 
 // The arithmetic position bound per coordinate format, which scripts/plots.py draws: the C++

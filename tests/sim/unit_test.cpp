@@ -169,12 +169,14 @@ TEST(UnitTimeline, CpgVariantsChangeOnlyC) {
     const std::uint64_t single_rest = simulate(one, single_base).unit.cycles -
                                       static_cast<std::uint64_t>(cpg_cycles(mode, single_base.format));
     for (const CpgVariant v : {CpgVariant{1, 2}, CpgVariant{1, 7}, CpgVariant{3, 1}, CpgVariant{3, 8},
-                               CpgVariant{3, 24}}) {
+                               CpgVariant{3, 24}, CpgVariant{1, 1, 1, 1}, CpgVariant{1, 5, 1, 1},
+                               CpgVariant{3, 2, 1, 1}, CpgVariant{3, 24, 1, 1}}) {
       UnitConfig cfg = base;
       cfg.cpg = v;
       cfg.validate("test");
       SimResult r;
-      EXPECT_EQ(run_vertices(mesh, cfg, &r), want) << to_string(mode) << " lanes " << v.lanes << " r " << v.digit_bits;
+      EXPECT_EQ(run_vertices(mesh, cfg, &r), want)
+          << to_string(mode) << " lanes " << v.lanes << " r " << v.digit_bits << " registered " << v.product_reg;
       EXPECT_EQ(r.cpg_cycles, cpg_cycles(mode, cfg.format, v));
       expect_consistent(r, mesh.triangle_count(), cfg.tess_factor, mode);
       UnitConfig single = single_base;
@@ -189,6 +191,12 @@ TEST(UnitTimeline, CpgVariantsChangeOnlyC) {
   EXPECT_EQ(cpg_cycles(NormalMode::Quadratic, f, {3, 1}), 81 + 2);
   EXPECT_EQ(cpg_cycles(NormalMode::Reflect, f, {3, 7}), 4 + 8 + 2);
   EXPECT_EQ(cpg_cycles(NormalMode::Linear, f, {3, 24}), 8);
+  // Registered products (rtl/tess_cpg_edge.sv): E = 9, D + 11, 3D + 13 and two b111 cycles.
+  EXPECT_EQ(cpg_cycles(NormalMode::Quadratic, f, {1, 1, 1, 1}), 3 * (72 + 13) + 3);
+  EXPECT_EQ(cpg_cycles(NormalMode::Reflect, f, {1, 2, 1, 1}), 3 * (12 + 11) + 3);
+  EXPECT_EQ(cpg_cycles(NormalMode::Linear, f, {1, 1, 1, 1}), 3 * 9 + 3);
+  EXPECT_EQ(cpg_cycles(NormalMode::Quadratic, f, {3, 24, 1, 1}), 16 + 3);
+  EXPECT_EQ(cpg_cycles(NormalMode::Linear, f, {3, 24, 1, 1}), 9 + 3);
 }
 
 TEST(UnitConfigCheck, CpgVariantOutsideTheDesignSpaceIsRejected) {
