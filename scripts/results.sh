@@ -70,7 +70,8 @@ if [[ $set_name == small ]]; then
   # The Pareto figure needs the unit's cost at each N of the balance grid (default widths, Λ = 1,
   # V = 4); the small set keeps to the N that matter for the conclusions, and the CPG variants of
   # the cpg grid.
-  cost_filter=(--where grid=balance int_blocks=1,2,3,4,6 --where grid=cpg --where grid=cpg_copies,cpg_copies_adaptive)
+  cost_filter=(--where grid=balance int_blocks=1,2,3,4,6 --where grid=cpg
+               --where grid=cpg_copies,cpg_copies_adaptive,cpg_budget,cpg_budget_adaptive)
 elif [[ $set_name == full ]]; then
   [[ -n $out ]] || out="$root/docs/results/full"
   cost_filter=(--where grid=balance,costs int_blocks=1,2,3,4,5,6)
