@@ -1,8 +1,10 @@
 // tessim info: what a mesh file contains once loaded (welded vertices, normals, degeneracies,
 // scalar tags).
+#include <cinttypes>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +12,7 @@
 #include "app/commands.hpp"
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
+#include "model/silhouette.hpp"
 #include "model/st_mesh.hpp"
 #include "sim/host.hpp"
 
@@ -20,6 +23,8 @@ namespace {
 struct InfoArgs {
   std::string mesh;
   bool json = false;
+  std::string silhouette;  // --silhouette eye=x,y,z[,beta=B]
+  bool silhouette_given = false;
 };
 
 const char* normal_source(const Mesh& mesh) {
@@ -27,7 +32,15 @@ const char* normal_source(const Mesh& mesh) {
 }
 
 void run_info(const InfoArgs& args) {
+  std::optional<SilhouetteSettings> silhouette_settings;
+  if (args.silhouette_given) {
+    silhouette_settings = parse_silhouette_option(args.silhouette);
+    if (silhouette_settings->eye_from_camera)
+      throw InputError("command line", "--silhouette", "info has no camera: give eye=x,y,z");
+  }
   const Mesh mesh = load_mesh(args.mesh);
+  std::optional<MeshSilhouette> silhouette;
+  if (silhouette_settings) silhouette.emplace(mesh, silhouette_settings->eye, silhouette_settings->beta);
   const MeshStats stats = mesh_stats(mesh);
   const glm::dvec3 lo = stats.bbox.lo, hi = stats.bbox.hi;
   const TagStats tags = tag_stats(mesh);
@@ -60,6 +73,15 @@ void run_info(const InfoArgs& args) {
                  {"theta", range(mesh.tags.size(), tags.theta_min, tags.theta_max)},
                  {"beta", range(tags.tagged, tags.beta_min, tags.beta_max)},
                  {"delta_length", range(tags.tagged, tags.delta_min, tags.delta_max)}};
+    if (silhouette) {
+      const SilhouetteCounts& c = silhouette->counts();
+      const glm::dvec3 eye = silhouette->eye();
+      j["silhouette"] = {{"eye", {eye.x, eye.y, eye.z}},     {"beta", silhouette->beta()},
+                         {"edges", c.edges},                 {"flat", c.flat},
+                         {"blended", c.blended},             {"curved", c.curved},
+                         {"boundary", c.boundary},           {"non_manifold", c.non_manifold},
+                         {"feature_ends", c.feature_ends}};
+    }
     std::cout << j.dump(2) << "\n";
     return;
   }
@@ -75,6 +97,15 @@ void run_info(const InfoArgs& args) {
   std::printf("zero-length edges     %zu\n", stats.zero_length_edges);
   if (!mesh.normals_from_file)
     std::printf("normal fallbacks      %zu (vertices with no defined normal, given +Z)\n", stats.normal_fallbacks);
+  if (silhouette) {
+    const SilhouetteCounts& c = silhouette->counts();
+    std::printf("silhouette            eye %s, beta %.9g\n", format_vec(silhouette->eye()).c_str(), silhouette->beta());
+    std::printf("  edges alpha = 0     %" PRIu64 " (flat)\n", c.flat);
+    std::printf("  edges 0 < alpha < 1 %" PRIu64 " (blended)\n", c.blended);
+    std::printf("  edges alpha = 1     %" PRIu64 " (curved; %" PRIu64 " boundary, %" PRIu64 " non-manifold)\n", c.curved,
+                c.boundary, c.non_manifold);
+    std::printf("  feature ends        %" PRIu64 " (two faces shade an end with different normals)\n", c.feature_ends);
+  }
   if (!tags.present) {
     std::printf("tags                  none (plain PN triangles)\n");
     return;
@@ -102,10 +133,16 @@ void run_info(const InfoArgs& args) {
 
 void register_info(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
-  CLI::App* cmd = app.add_subcommand("info", "Print what a mesh contains once loaded: counts, bounds, normals, degeneracies, tags");
+  CLI::App* cmd = app.add_subcommand("info", "Print what a mesh contains once loaded: counts, bounds, normals, degeneracies, tags, silhouette edges");
   cmd->add_option("mesh", args->mesh, "Input mesh (OBJ, PLY, STL, OFF, ... via Assimp)")->required();
   cmd->add_flag("--json", args->json, "Machine-readable output");
-  cmd->callback([args] { run_info(*args); });
+  CLI::Option* silhouette = cmd->add_option("--silhouette", args->silhouette,
+                  "eye=x,y,z[,beta=B]: also count the edges whose silhouetteness from that eye is 0, between 0 and 1, "
+                  "and 1 (docs/mathematics.md)");
+  cmd->callback([args, silhouette] {
+    args->silhouette_given = silhouette->count() > 0;
+    run_info(*args);
+  });
 }
 
 }  // namespace tessim::app

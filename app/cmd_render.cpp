@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <string>
@@ -58,6 +59,7 @@ struct RenderArgs {
   double elevation = render::ViewAngles{}.elevation_deg;
   std::string up = "y";
   bool no_supersample = false;
+  std::string view_camera;  // --view-camera: the picture's camera without --adaptive
   std::string output;
   bool quiet = false;
 };
@@ -139,7 +141,7 @@ render::RenderMesh pn_tessellated(const Mesh& mesh, const TessSettings& settings
   return out;
 }
 
-enum class ColourMode { Shaded, ErrorPosition, ErrorNormal, PnVsFlat, StpnVsPn };
+enum class ColourMode { Shaded, ErrorPosition, ErrorNormal, PnVsFlat, StpnVsPn, Silhouette };
 
 ColourMode parse_colour_mode(const std::string& text) {
   if (text == "shaded") return ColourMode::Shaded;
@@ -147,8 +149,9 @@ ColourMode parse_colour_mode(const std::string& text) {
   if (text == "error-normal") return ColourMode::ErrorNormal;
   if (text == "pn-vs-flat") return ColourMode::PnVsFlat;
   if (text == "stpn-vs-pn") return ColourMode::StpnVsPn;
+  if (text == "silhouette") return ColourMode::Silhouette;
   throw InputError("command line", "--color",
-                   "'" + text + "' is not one of shaded, error-position, error-normal, pn-vs-flat, stpn-vs-pn");
+                   "'" + text + "' is not one of shaded, error-position, error-normal, pn-vs-flat, stpn-vs-pn, silhouette");
 }
 
 bool is_error_mode(ColourMode m) { return m == ColourMode::ErrorPosition || m == ColourMode::ErrorNormal; }
@@ -205,6 +208,26 @@ PatchScalars distance_to(const Mesh& mesh, NormalMode mode, ColourMode colour, d
   };
 }
 
+// The silhouetteness α of the patch's edges spread over it: at (w, u, v) the edges' α weighted
+// by the products of their two ends' barycentric weights, so that each edge shows its own α
+// along it; a corner (all products zero) shows the mean of its two edges.
+PatchScalars silhouette_alpha(const MeshSilhouette& silhouette) {
+  return [&silhouette](const PatchView& patch, std::span<double> out) {
+    const std::array<double, 3>& alpha = silhouette.alpha(patch.triangle);  // edges 01, 12, 20
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double u = patch.domain[i].x, v = patch.domain[i].y, w = 1.0 - u - v;
+      const double k01 = w * u, k12 = u * v, k20 = v * w;
+      const double sum = k01 + k12 + k20;
+      if (sum > 0.0) {
+        out[i] = (alpha[0] * k01 + alpha[1] * k12 + alpha[2] * k20) / sum;
+      } else {  // a corner: the largest of w, u, v is 1
+        out[i] = w >= u && w >= v ? 0.5 * (alpha[0] + alpha[2]) : u >= v ? 0.5 * (alpha[0] + alpha[1])
+                                                                          : 0.5 * (alpha[1] + alpha[2]);
+      }
+    }
+  };
+}
+
 // The unit's fixed-point vertex at each reference vertex (same lattice point), measured against
 // the reference as `tessim sim --errors` measures it (sim::MeshErrors). A tagged mesh takes the
 // fixed-point scalar-tagged arithmetic against the scalar-tagged reference.
@@ -233,7 +256,7 @@ std::string file_name(const std::string& path) { return std::filesystem::path(pa
 void run_render(const RenderArgs& args) {
   // Validate everything before loading or computing anything.
   const glm::ivec2 size = parse_image_size(args.size, "--size");
-  const TessSettings settings = args.pattern.settings("render");
+  TessSettings settings = args.pattern.settings("render");
   const NormalMode mode = parse_normals_option("render", args.normals);
   const ComparePanels compare = parse_compare(args.compare);
   const ColourMode colour = parse_colour_mode(args.color);
@@ -244,6 +267,24 @@ void run_render(const RenderArgs& args) {
     throw InputError("command line", "--normals", "the unit has no derivative normals (float reference only)");
   if (!(args.color_max >= 0.0) || !std::isfinite(args.color_max))
     throw InputError("command line", "--color-max", "must be a positive finite number");
+  if (colour == ColourMode::Silhouette && !settings.uses_silhouette())
+    throw InputError("command line", "--color", "silhouette needs --silhouette or --adaptive silhouette");
+  const bool adaptive_view = settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive;
+  std::optional<ScreenCamera> view_camera;
+  if (!args.view_camera.empty()) {
+    if (adaptive_view)
+      throw InputError("command line", "--view-camera", "--adaptive takes the picture from its --camera already");
+    if (args.view_given)
+      throw InputError("command line", "--view-camera", "cannot be combined with --azimuth or --elevation");
+    AdaptiveOptions parse;
+    parse.adaptive = "screen";
+    parse.camera = args.view_camera;
+    parse.viewport = std::to_string(size.x) + "x" + std::to_string(size.y);
+    TessSettings with_camera;
+    parse.apply(with_camera, "render");
+    validate(with_camera, "command line");
+    view_camera = with_camera.camera;
+  }
   if (!args.config.empty() && !is_error_mode(colour))
     throw InputError("command line", "--config", "only the error colour modes use the unit's configuration");
   const sim::UnitConfig cfg = is_error_mode(colour) ? unit_config(args.config, mode) : sim::UnitConfig{};
@@ -264,6 +305,7 @@ void run_render(const RenderArgs& args) {
   check_output_paths({{"-o", output.string()}});
 
   const Mesh mesh = load_mesh(args.mesh);
+  bind_silhouette(settings, mesh);
   const std::string mesh_name = mesh.source.empty() ? args.mesh : mesh.source;
   const bool tagged = mesh.has_tags();
   if (compare.pn && !tagged)
@@ -292,6 +334,8 @@ void run_render(const RenderArgs& args) {
   if (is_error_mode(colour)) {
     errors = std::make_shared<sim::MeshErrors>(main_mesh, sim::host_scaling(main_mesh), cfg, true);
     scalars = fixed_point_errors(main_mesh, cfg, colour, errors);
+  } else if (colour == ColourMode::Silhouette) {
+    scalars = silhouette_alpha(*settings.silhouette_field);
   } else if (colour != ColourMode::Shaded) {
     scalars = distance_to(mesh, mode, colour, diagonal);
   }
@@ -317,7 +361,9 @@ void run_render(const RenderArgs& args) {
     };
   }
 
-  const std::string surface = tagged ? "STPN" : "PN";
+  const std::string surface =
+      settings.silhouette.blends() ? (tagged ? "PN of the tags' normals, silhouette-blended" : "PN, silhouette-blended")
+                                : tagged ? "STPN" : "PN";
   ProgressDisplay tessellation_progress("render: tessellate", "vertices",
                                         counts.vertices * (1 + static_cast<std::uint64_t>(compare.pn)), args.quiet);
   std::vector<render::RenderMesh> panels;
@@ -345,12 +391,13 @@ void run_render(const RenderArgs& args) {
   // (fine) and what is far (coarse) can be seen as the factors saw them.
   render::Camera camera;
   bool chosen_view = false;
-  if (settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive) {
-    camera.eye = settings.camera.eye;
-    camera.target = settings.camera.target;
+  if (adaptive_view || view_camera) {
+    const ScreenCamera& from = view_camera ? *view_camera : settings.camera;
+    camera.eye = from.eye;
+    camera.target = from.target;
     camera.up = view.up == render::UpAxis::Y ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
     if (glm::length(glm::cross(camera.up, camera.target - camera.eye)) == 0.0) camera.up = glm::dvec3(1, 0, 0);
-    camera.fov_y_deg = settings.camera.fov_deg;
+    camera.fov_y_deg = from.fov_deg;
     camera.aspect = static_cast<double>(size.x) / size.y;
   } else {
     if (!args.view_given) {
@@ -373,7 +420,9 @@ void run_render(const RenderArgs& args) {
   double largest = 0.0;
   if (heat) {
     for (double v : panels.back().scalars) largest = std::max(largest, v);
-    scale.hi = args.color_max > 0.0 ? args.color_max : (largest > 0.0 ? largest : 1.0);
+    // α lives in [0, 1]: its bar always spans that, so that pictures compare.
+    const double natural_top = colour == ColourMode::Silhouette ? 1.0 : largest > 0.0 ? largest : 1.0;
+    scale.hi = args.color_max > 0.0 ? args.color_max : natural_top;
     scale.clipped_above = largest > scale.hi;
     options.scalar_lo = scale.lo;
     options.scalar_hi = scale.hi;
@@ -385,6 +434,7 @@ void run_render(const RenderArgs& args) {
       case ColourMode::PnVsFlat:
         scale.title = "distance " + surface + " surface to flat input / bounding-box diagonal";
         break;
+      case ColourMode::Silhouette: scale.title = "silhouetteness alpha of the edges (0 flat, 1 curved)"; break;
       default: scale.title = "distance STPN to plain PN / bounding-box diagonal"; break;
     }
   }
@@ -478,7 +528,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("--color", args->color,
                   "Surface colour: shaded; or a heat map with colour bar: error-position, error-normal (the "
                   "unit's fixed point against the float64 reference), pn-vs-flat (distance to the flat input), "
-                  "stpn-vs-pn (tagged mesh: distance to plain PN)")
+                  "stpn-vs-pn (tagged mesh: distance to plain PN), silhouette (each edge's silhouetteness alpha)")
       ->capture_default_str();
   cmd->add_option("--color-max", args->color_max,
                   "Top of the colour bar (0: the largest value); fixes the scale across pictures")
@@ -502,6 +552,9 @@ void register_render(CLI::App& app) {
       cmd->add_option("--elevation", args->elevation,
                       "View angle above the horizon, degrees, -90..90 (default: the automatic best view's, 25)")
           ->transform(number_check<double>("command line", "--elevation", "-90..90"));
+  cmd->add_option("--view-camera", args->view_camera,
+                  "Take the picture from eye=x,y,z[,target=x,y,z][,fov=deg] (as --adaptive's --camera) instead of the "
+                  "automatic view; with --adaptive the picture is taken from its camera");
   cmd->add_option("--up", args->up, "Up axis of the model: y or z (front is +Z or -Y)")->capture_default_str();
   cmd->add_flag("--no-supersample", args->no_supersample, "One sample per pixel instead of 2x2");
   cmd->add_option("-o,--output", args->output, "Output image: .png (8-bit sRGB) or .exr (half-float linear)")

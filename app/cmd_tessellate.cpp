@@ -33,7 +33,7 @@ struct TessellateArgs {
 
 void run_tessellate(const TessellateArgs& args) {
   // Everything the command line decides is checked before the mesh is read or a file opened.
-  const TessSettings settings = args.pattern.settings("tessellate");
+  TessSettings settings = args.pattern.settings("tessellate");
   const NormalMode mode = parse_normals_option("tessellate", args.normals);
   if (!is_supported_output(args.output))
     throw InputError(args.output, "output",
@@ -48,6 +48,7 @@ void run_tessellate(const TessellateArgs& args) {
   std::FILE* report = to_stdout ? stderr : stdout;
 
   const Mesh mesh = load_mesh(args.mesh);
+  bind_silhouette(settings, mesh);
   PatternCache patterns(settings);
   const TessellationCounts counts = count_tessellation(mesh, patterns);
   TessellationSummary summary;
@@ -101,7 +102,8 @@ void run_tessellate(const TessellateArgs& args) {
               std::string(to_string(mode)).c_str());
   if (summary.culled > 0)
     std::fprintf(report, "%" PRIu64 " patches culled (a factor <= 0 or NaN)\n", summary.culled);
-  if (mesh.has_tags())
+  if (settings.silhouette_field) print_silhouette_counts(report, *settings.silhouette_field);
+  if (mesh.has_tags() && !settings.silhouette.blends())
     std::fprintf(report, "scalar-tagged PN: %zu tagged vertices (docs/stpn.md)\n",
                 static_cast<std::size_t>(std::count_if(mesh.tags.begin(), mesh.tags.end(),
                                                        [](const VertexTags& t) { return t.tagged(); })));

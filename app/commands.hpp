@@ -4,6 +4,7 @@
 #pragma once
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -44,15 +45,19 @@ glm::ivec2 parse_image_size(std::string_view text, std::string_view option);
 //   --partitioning P [-L N]               D3D11 pattern, every factor N
 //   --outer A,B,C [--inner F] [--partitioning P]   D3D11 pattern, these factors (inner
 //                                         default: the largest outer factor)
-//   --adaptive screen --camera eye=x,y,z[,target=x,y,z][,fov=deg] [--viewport WxH]
-//          [--pixels-per-segment P] [--partitioning P]   D3D11 pattern, factors per edge
+//   --adaptive screen|silhouette --camera eye=x,y,z[,target=x,y,z][,fov=deg] [--viewport WxH]
+//          [--pixels-per-segment P | --outline-tolerance T] [--partitioning P]   D3D11 pattern, factors per edge
+//   --silhouette eye=x,y,z[,beta=B] | camera[,beta=B]    silhouette-blended control points
 struct AdaptiveOptions {
   std::string adaptive, camera, viewport = "1280x720";
-  double pixels_per_segment = 16.0;
+  double pixels_per_segment = 16.0;  // the screen rule's
+  double outline_tolerance = 0.5;    // the silhouette rule's
 
-  // Set by add_adaptive_options: whether --viewport and --pixels-per-segment were given.
+  // Set by add_adaptive_options: whether --viewport, --pixels-per-segment and
+  // --outline-tolerance were given.
   const CLI::Option* viewport_option = nullptr;
   const CLI::Option* pixels_per_segment_option = nullptr;
+  const CLI::Option* outline_tolerance_option = nullptr;
 
   bool given() const { return !adaptive.empty(); }
   // Without --adaptive: InputError when --camera, --viewport or --pixels-per-segment was given.
@@ -67,11 +72,22 @@ struct PatternOptions {
   std::string partitioning;
   std::string outer, inner;
   AdaptiveOptions adaptive;
+  std::string silhouette;  // --silhouette eye=x,y,z[,beta=B] | camera[,beta=B]
+  const CLI::Option* silhouette_option = nullptr;  // set by add_pattern_options
+
+  bool silhouette_given() const { return !silhouette.empty() || (silhouette_option && silhouette_option->count() > 0); }
 
   // Throws InputError(command, option, reason).
   TessSettings settings(const char* command) const;
 };
 void add_pattern_options(CLI::App& cmd, PatternOptions& options, const char* command);
+// --silhouette's text (docs/mathematics.md §11): "eye=x,y,z[,beta=B]" or "camera[,beta=B]".
+// Throws InputError(command line, --silhouette, reason) for malformed text, a non-finite eye or
+// beta <= 0 / not finite.
+SilhouetteSettings parse_silhouette_option(const std::string& text);
+CLI::Option* add_silhouette_option(CLI::App& cmd, std::string& text);
+// One line: how many edges the silhouette makes flat, blended and curved (tessellate, render, info).
+void print_silhouette_counts(std::FILE* out, const MeshSilhouette& silhouette);
 
 // The pattern the unit generates in `tessim sim` and `tessim cosim`: the uniform pattern with
 // the configuration's L (nothing given), or the D3D11 pattern with --partitioning, --outer /

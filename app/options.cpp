@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cinttypes>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -133,9 +134,9 @@ std::vector<double> parse_numbers(const char* option, const std::string& text) {
   return out;
 }
 
-glm::dvec3 parse_point(const std::string& key, const std::string& text) {
-  const std::vector<double> v = parse_numbers("--camera", text);
-  if (v.size() != 3) throw InputError(kCommandLine, "--camera", key + "=" + text + " needs three coordinates x,y,z");
+glm::dvec3 parse_point(const std::string& key, const std::string& text, const char* option = "--camera") {
+  const std::vector<double> v = parse_numbers(option, text);
+  if (v.size() != 3) throw InputError(kCommandLine, option, key + "=" + text + " needs three coordinates x,y,z");
   return {v[0], v[1], v[2]};
 }
 
@@ -195,7 +196,7 @@ Partitioning parse_partitioning_option(const char* /*command*/, const std::strin
 
 void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& o, const char* /*command*/) {
   cmd.add_option("--adaptive", o.adaptive,
-                 "'screen': factors per edge from the edge's projected length (docs/patterns.md)");
+                 "'screen': factors per edge from the edge's projected length; 'silhouette': that scaled by the edge's silhouetteness, with silhouette blending from the camera's eye (docs/patterns.md)");
   cmd.add_option("--camera", o.camera, "with --adaptive: eye=x,y,z[,target=x,y,z][,fov=deg] (fov default 45)");
   o.viewport_option =
       cmd.add_option("--viewport", o.viewport, "with --adaptive: viewport WxH in pixels")->capture_default_str();
@@ -203,6 +204,63 @@ void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& o, const char* /*comma
       cmd.add_option("--pixels-per-segment", o.pixels_per_segment, "with --adaptive: target on-screen length of a segment")
           ->transform(number_check<double>(kCommandLine, "--pixels-per-segment", "positive numbers"))
           ->capture_default_str();
+  o.outline_tolerance_option =
+      cmd.add_option("--outline-tolerance", o.outline_tolerance,
+                     "with --adaptive silhouette: largest distance in pixels between an edge's curve and its segments")
+          ->transform(number_check<double>(kCommandLine, "--outline-tolerance", "positive numbers"))
+          ->capture_default_str();
+}
+
+SilhouetteSettings parse_silhouette_option(const std::string& text) {
+  SilhouetteSettings s;
+  s.enabled = true;
+  // "camera" or "eye=x,y,z", then optionally ",beta=B" and ",blend=on|off"; the eye's own commas
+  // belong to it.
+  std::string rest = text;
+  const std::size_t blend_at = rest.find(",blend=");
+  if (blend_at != std::string::npos) {
+    const std::string value = rest.substr(blend_at + 7);
+    if (value != "on" && value != "off")
+      throw InputError(kCommandLine, "--silhouette", "blend=" + value + " is not on or off (it comes last)");
+    s.blend = value == "on";
+    rest = rest.substr(0, blend_at);
+  }
+  const std::size_t beta_at = rest.find(",beta=");
+  const std::string head = rest.substr(0, beta_at);
+  if (head == "camera") {
+    s.eye_from_camera = true;
+  } else if (head.rfind("eye=", 0) == 0) {
+    s.eye = parse_point("eye", head.substr(4), "--silhouette");
+    if (!is_finite(s.eye))
+      throw InputError(kCommandLine, "--silhouette", "eye " + head.substr(4) + " is not finite");
+  } else {
+    throw InputError(kCommandLine, "--silhouette",
+                     "'" + text + "' is not eye=x,y,z[,beta=B][,blend=off] or camera[,beta=B][,blend=off]");
+  }
+  if (beta_at != std::string::npos) {
+    const std::vector<double> beta = parse_numbers("--silhouette", rest.substr(beta_at + 6));
+    if (beta.size() != 1) throw InputError(kCommandLine, "--silhouette", "beta takes one number in '" + text + "'");
+    s.beta = beta[0];
+  }
+  validate(s, kCommandLine);
+  return s;
+}
+
+void print_silhouette_counts(std::FILE* out, const MeshSilhouette& silhouette) {
+  const SilhouetteCounts& c = silhouette.counts();
+  std::fprintf(out,
+               "silhouette (eye %s, beta %g): %" PRIu64 " edges: %" PRIu64 " flat (alpha 0), %" PRIu64
+               " blended, %" PRIu64 " curved (alpha 1; %" PRIu64 " boundary, %" PRIu64 " non-manifold); %" PRIu64
+               " feature ends\n",
+               format_vec(silhouette.eye()).c_str(), silhouette.beta(), c.edges, c.flat, c.blended, c.curved,
+               c.boundary, c.non_manifold, c.feature_ends);
+}
+
+CLI::Option* add_silhouette_option(CLI::App& cmd, std::string& text) {
+  return cmd.add_option("--silhouette", text,
+                 "silhouette enhancement: eye=x,y,z[,beta=B][,blend=off] or camera[,beta=B][,blend=off] (the --camera "
+                 "eye); each edge's silhouetteness blends its patch between flat and PN (beta default 0.25; blend=off: "
+                 "the silhouetteness only drives --adaptive silhouette, docs/mathematics.md)");
 }
 
 void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) {
@@ -217,6 +275,7 @@ void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) 
   cmd.add_option("--outer", o.outer, "D3D11 outer factors A,B,C (edges u=0, v=0, w=0), the same for every patch");
   cmd.add_option("--inner", o.inner, "D3D11 inner factor with --outer (default: the largest outer factor)");
   add_adaptive_options(cmd, o.adaptive, command);
+  o.silhouette_option = add_silhouette_option(cmd, o.silhouette);
 }
 
 void AdaptiveOptions::check_given_alone() const {
@@ -228,13 +287,23 @@ void AdaptiveOptions::check_given_alone() const {
     throw InputError(kCommandLine, "--viewport", "needs --adaptive screen");
   if (pixels_per_segment_option && pixels_per_segment_option->count() > 0)
     throw InputError(kCommandLine, "--pixels-per-segment", "needs --adaptive screen");
+  if (outline_tolerance_option && outline_tolerance_option->count() > 0)
+    throw InputError(kCommandLine, "--outline-tolerance", "needs --adaptive silhouette");
 }
 
 void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
-  if (adaptive != "screen") throw InputError(kCommandLine, "--adaptive", "'" + adaptive + "' is not 'screen'");
-  if (camera.empty()) throw InputError(kCommandLine, "--camera", "--adaptive screen needs --camera eye=x,y,z");
+  if (adaptive != "screen" && adaptive != "silhouette")
+    throw InputError(kCommandLine, "--adaptive", "'" + adaptive + "' is not 'screen' or 'silhouette'");
+  if (camera.empty())
+    throw InputError(kCommandLine, "--camera", "--adaptive " + adaptive + " needs --camera eye=x,y,z");
   s.kind = PatternKind::D3D11;
   s.source = FactorSource::Adaptive;
+  s.rule = adaptive == "silhouette" ? AdaptiveRule::Silhouette : AdaptiveRule::Screen;
+  // Each rule has its own knob: the other one's is refused rather than silently ignored.
+  if (s.rule == AdaptiveRule::Silhouette && pixels_per_segment_option && pixels_per_segment_option->count() > 0)
+    throw InputError(kCommandLine, "--pixels-per-segment", "is the screen rule's; --adaptive silhouette takes --outline-tolerance");
+  if (s.rule == AdaptiveRule::Screen && outline_tolerance_option && outline_tolerance_option->count() > 0)
+    throw InputError(kCommandLine, "--outline-tolerance", "needs --adaptive silhouette");
   // key=value items; a value's own commas belong to it until the next "key=".
   std::vector<std::pair<std::string, std::string>> items;
   std::size_t start = 0;
@@ -269,6 +338,7 @@ void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
   s.camera.width = size.x;
   s.camera.height = size.y;
   s.pixels_per_segment = pixels_per_segment;
+  s.outline_tolerance = outline_tolerance;
 }
 
 TessSettings PatternOptions::settings(const char* command) const {
@@ -279,7 +349,12 @@ TessSettings PatternOptions::settings(const char* command) const {
   if (fixed && adaptive.given()) throw InputError(kCommandLine, "--outer", "cannot be combined with --adaptive");
   if (!inner.empty() && outer.empty()) throw InputError(kCommandLine, "--inner", "needs --outer");
   adaptive.check_given_alone();
-  if (partitioning.empty() && !fixed && !adaptive.given()) return s;  // the uniform pattern
+  if (partitioning.empty() && !fixed && !adaptive.given()) {  // the uniform pattern
+    if (silhouette_given()) s.silhouette = parse_silhouette_option(silhouette);
+    if (s.silhouette.eye_from_camera)
+      throw InputError(kCommandLine, "--silhouette", "'camera' takes the eye of --adaptive ... --camera, which is not given");
+    return s;
+  }
 
   s.kind = PatternKind::D3D11;
   if (!partitioning.empty()) s.partitioning = parse_partitioning_option(command, partitioning);
@@ -291,6 +366,11 @@ TessSettings PatternOptions::settings(const char* command) const {
     s.inner = inner.empty() ? std::max({s.outer[0], s.outer[1], s.outer[2]}) : parse_factor(command, "--inner", inner);
   }
   if (adaptive.given()) adaptive.apply(s, command);
+  if (silhouette_given()) {
+    s.silhouette = parse_silhouette_option(silhouette);
+    if (s.silhouette.eye_from_camera && !adaptive.given())
+      throw InputError(kCommandLine, "--silhouette", "'camera' takes the eye of --adaptive ... --camera, which is not given");
+  }
   validate(s, kCommandLine);
   // Fixed factors are the same for every patch: if they cull one patch they cull all, and the
   // run would have nothing to tessellate. Refused by every command alike (docs/patterns.md).
@@ -312,6 +392,12 @@ void add_unit_pattern_options(CLI::App& cmd, UnitPatternOptions& o, const char* 
 }
 
 std::optional<TessSettings> UnitPatternOptions::settings(const char* command, int L) const {
+  // The unit's interface carries no per-edge silhouetteness: the silhouette rule is the float
+  // reference's (tessellate, render).
+  if (adaptive.adaptive == "silhouette")
+    throw InputError(kCommandLine, "--adaptive",
+                     "'silhouette' needs each edge's silhouetteness, which the unit's triangle interface does not "
+                     "carry; tessellate and render have it");
   if (!given()) {
     adaptive.check_given_alone();
     return std::nullopt;

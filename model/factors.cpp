@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "model/base/error.hpp"
 #include "model/pattern.hpp"
@@ -20,27 +21,69 @@ std::string number(double x) {
 }  // namespace
 
 std::string TessSettings::describe() const {
-  if (kind == PatternKind::Uniform) return "L=" + std::to_string(L);
-  std::string s = partitioning_name(partitioning);
-  if (source == FactorSource::Fixed) {
+  std::string s;
+  if (kind == PatternKind::Uniform) {
+    s = "L=" + std::to_string(L);
+  } else if (source == FactorSource::Fixed) {
+    s = partitioning_name(partitioning);
     s += " outer " + number(outer[0]) + "," + number(outer[1]) + "," + number(outer[2]) + " inner " + number(inner);
   } else {
-    s += " adaptive (eye " + format_vec(camera.eye) + ", fov " + number(camera.fov_deg) + " deg, " +
-         std::to_string(camera.width) + "x" + std::to_string(camera.height) + ", " + number(pixels_per_segment) +
-         " pixels per segment)";
+    s = partitioning_name(partitioning);
+    const bool by_outline = rule == AdaptiveRule::Silhouette;
+    s += std::string(by_outline ? " silhouette-adaptive (eye " : " adaptive (eye ") + format_vec(camera.eye) +
+         ", fov " + number(camera.fov_deg) + " deg, " + std::to_string(camera.width) + "x" +
+         std::to_string(camera.height) + ", " +
+         (by_outline ? "outline tolerance " + number(outline_tolerance) + " pixels)"
+                     : number(pixels_per_segment) + " pixels per segment)");
+  }
+  if (silhouette.enabled) {
+    s += silhouette.eye_from_camera ? std::string(", silhouettes from the camera's eye")
+                                    : ", silhouettes from eye " + format_vec(silhouette.eye);
+    s += " (beta " + number(silhouette.beta) + (silhouette.blend ? ")" : ", factors only)");
   }
   return s;
 }
 
-float adaptive_edge_factor(const ScreenCamera& camera, double pixels_per_segment, const glm::dvec3& a,
-                           const glm::dvec3& b) {
+namespace {
+
+// Pixels per mesh unit at the edge's midpoint: f / |(a + b)/2 − eye| with f the focal length in
+// pixels of the viewport's height. An edge through the eye would be infinitely large on screen;
+// its factor is then the maximum.
+double pixels_per_unit(const ScreenCamera& camera, const glm::dvec3& a, const glm::dvec3& b) {
   const double focal_pixels = 0.5 * camera.height / std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
   const glm::dvec3 mid = 0.5 * (a + b);
-  const double length = glm::length(a - b);
-  // An edge through the eye would be infinitely long on screen; its factor is the maximum.
   const double distance = std::max(glm::length(mid - camera.eye), 1e-300);
-  const double segments = length * focal_pixels / (distance * pixels_per_segment);
-  return static_cast<float>(std::clamp(segments, 1.0, static_cast<double>(kMaxTessFactor)));
+  return focal_pixels / distance;
+}
+
+double clamp_factor(double segments) { return std::clamp(segments, 1.0, static_cast<double>(kMaxTessFactor)); }
+
+}  // namespace
+
+float adaptive_edge_factor(const ScreenCamera& camera, double pixels_per_segment, const glm::dvec3& a,
+                           const glm::dvec3& b) {
+  const double length = glm::length(a - b);
+  return static_cast<float>(clamp_factor(length * pixels_per_unit(camera, a, b) / pixels_per_segment));
+}
+
+float silhouette_edge_factor(const ScreenCamera& camera, double outline_tolerance, double alpha, double deviation,
+                             const glm::dvec3& a, const glm::dvec3& b) {
+  const double offset_pixels = alpha * deviation * pixels_per_unit(camera, a, b);
+  return static_cast<float>(clamp_factor(kChordErrorFactor * std::sqrt(offset_pixels / outline_tolerance)));
+}
+
+void bind_silhouette(TessSettings& s, const Mesh& mesh) {
+  if (!s.uses_silhouette() || s.silhouette_field) return;
+  const bool adaptive = s.kind == PatternKind::D3D11 && s.source == FactorSource::Adaptive;
+  const std::string source = mesh.source.empty() ? std::string("mesh") : mesh.source;
+  validate(s.silhouette, source);
+  if (s.silhouette.enabled && s.silhouette.eye_from_camera && !adaptive)
+    throw InputError(source, "--silhouette", "'camera' takes the eye of --adaptive ... --camera, which is not given");
+  // Without --silhouette the silhouette rule takes α from the camera's eye with the default β
+  // (and the patches stay plain PN); with it, the rule and the blend share its α.
+  const bool own_eye = s.silhouette.enabled && !s.silhouette.eye_from_camera;
+  const glm::dvec3 eye = own_eye ? s.silhouette.eye : s.camera.eye;
+  s.silhouette_field = std::make_shared<const MeshSilhouette>(mesh, eye, s.silhouette.beta);
 }
 
 PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::size_t t) {
@@ -53,16 +96,27 @@ PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::
   const glm::dvec3& p0 = mesh.positions[tri[0]];
   const glm::dvec3& p1 = mesh.positions[tri[1]];
   const glm::dvec3& p2 = mesh.positions[tri[2]];
-  auto edge = [&](const glm::dvec3& a, const glm::dvec3& b) {
-    return adaptive_edge_factor(settings.camera, settings.pixels_per_segment, a, b);
-  };
   PatchFactors f;
-  f.outer = {edge(p0, p2), edge(p0, p1), edge(p1, p2)};
+  if (settings.rule == AdaptiveRule::Silhouette) {
+    if (!settings.silhouette_field) throw std::logic_error("patch_factors: the silhouette rule needs bind_silhouette()");
+    const std::array<double, 3>& alpha = settings.silhouette_field->alpha(t);  // edges 01, 12, 20
+    const std::array<double, 3>& deviation = settings.silhouette_field->deviation(t);
+    auto edge = [&](int e, const glm::dvec3& p, const glm::dvec3& q) {
+      return silhouette_edge_factor(settings.camera, settings.outline_tolerance, alpha[e], deviation[e], p, q);
+    };
+    f.outer = {edge(2, p0, p2), edge(0, p0, p1), edge(1, p1, p2)};
+  } else {
+    auto edge = [&](const glm::dvec3& a, const glm::dvec3& b) {
+      return adaptive_edge_factor(settings.camera, settings.pixels_per_segment, a, b);
+    };
+    f.outer = {edge(p0, p2), edge(p0, p1), edge(p1, p2)};
+  }
   f.inner = std::max({f.outer[0], f.outer[1], f.outer[2]});
   return f;
 }
 
 void validate(const TessSettings& s, const std::string& source) {
+  validate(s.silhouette, source);
   if (s.kind == PatternKind::Uniform) {
     if (s.L < 1 || s.L > kMaxTessFactor)
       throw InputError(source, "-L", "tessellation factor " + std::to_string(s.L) + " is outside 1.." +
@@ -80,6 +134,8 @@ void validate(const TessSettings& s, const std::string& source) {
   if (c.width < 1 || c.height < 1) throw InputError(source, "--viewport", "width and height must be at least 1");
   if (!(s.pixels_per_segment > 0.0) || std::isinf(s.pixels_per_segment))
     throw InputError(source, "--pixels-per-segment", "must be a positive finite number");
+  if (!(s.outline_tolerance > 0.0) || std::isinf(s.outline_tolerance))
+    throw InputError(source, "--outline-tolerance", "must be a positive finite number");
 }
 
 }  // namespace tessim

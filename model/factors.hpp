@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,11 +20,15 @@
 
 #include "model/d3d11_types.hpp"
 #include "model/mesh.hpp"
+#include "model/silhouette.hpp"
 
 namespace tessim {
 
 enum class PatternKind { Uniform, D3D11 };
 enum class FactorSource { Fixed, Adaptive };
+// The adaptive rules (docs/patterns.md, Factors of a mesh): the edge's projected length alone, or
+// that length scaled by the edge's silhouetteness α (model/silhouette.hpp).
+enum class AdaptiveRule { Screen, Silhouette };
 
 // A perspective camera for adaptive factors: eye, the point looked at, vertical field of view
 // and the viewport in pixels.
@@ -41,8 +46,20 @@ struct TessSettings {
   FactorSource source = FactorSource::Fixed;
   std::array<float, 3> outer{4.0f, 4.0f, 4.0f};  // fixed: outer[i] on the edge where coordinate i is 0
   float inner = 4.0f;
+  AdaptiveRule rule = AdaptiveRule::Screen;  // adaptive
   ScreenCamera camera;                // adaptive
-  double pixels_per_segment = 16.0;   // adaptive: target length of one edge segment on screen
+  double pixels_per_segment = 16.0;   // adaptive, screen rule: target length of one edge segment on screen
+  double outline_tolerance = 0.5;     // adaptive, silhouette rule: largest curve-to-segment distance, pixels
+  // Silhouette blending of the control points (independent of the pattern). The silhouette rule
+  // takes its α from it when it is on, else from the camera's eye with the default β.
+  SilhouetteSettings silhouette;
+  // The α of every edge for the mesh being tessellated, once bind_silhouette() has built it.
+  std::shared_ptr<const MeshSilhouette> silhouette_field;
+
+  bool uses_silhouette() const {
+    return silhouette.enabled || (kind == PatternKind::D3D11 && source == FactorSource::Adaptive &&
+                                  rule == AdaptiveRule::Silhouette);
+  }
 
   // One line for summaries: "L=4" (the uniform pattern), "integer outer 3,4,5 inner 4", "fractional_odd
   // adaptive (camera ...)".
@@ -61,14 +78,33 @@ struct PatchFactors {
 float adaptive_edge_factor(const ScreenCamera& camera, double pixels_per_segment, const glm::dvec3& a,
                            const glm::dvec3& b);
 
+// Silhouette rule (docs/patterns.md §7): as many segments as keep the blended edge curve within
+// `outline_tolerance` pixels of its chords on screen. The curve's largest control-point offset
+// from the flat edge across the view is α·deviation (MeshSilhouette::deviation); a cubic with
+// end offsets at most h is within 2.25·h/F² of the chords of F equal segments, so
+// F = 1.5·sqrt(α·deviation·p / tolerance), p the pixels per mesh unit at the edge's midpoint,
+// clamped to 1..64. An edge seen face-on (α = 0, or its bulge along the view) or straight gets
+// one segment. α and the deviation are one double per edge and the rest
+// is symmetric in a and b, so the factor is crack-free like the screen rule's.
+constexpr double kChordErrorFactor = 1.5;  // sqrt(2.25)
+float silhouette_edge_factor(const ScreenCamera& camera, double outline_tolerance, double alpha, double deviation,
+                             const glm::dvec3& a, const glm::dvec3& b);
+
+// Resolves the silhouette's eye (the camera's for --silhouette camera and for the silhouette rule
+// without --silhouette) and builds the α of every edge of `mesh` into s.silhouette_field, unless
+// it is there or neither the blend nor the rule is on. Throws InputError for bad silhouette
+// settings.
+void bind_silhouette(TessSettings& s, const Mesh& mesh);
+
 // The factors of the mesh's triangle t. Adaptive: outer factor i from the edge where
 // coordinate i is 0 (outer[0]: vertices 0 and 2, outer[1]: vertices 0 and 1, outer[2]: vertices
-// 1 and 2), inner = the largest outer factor (the interior as fine as the finest edge).
+// 1 and 2), inner = the largest outer factor (the interior as fine as the finest edge). The
+// silhouette rule needs bind_silhouette() first (std::logic_error otherwise).
 PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::size_t t);
 
 // Throws InputError(source, element, reason) for settings out of range: L outside 1..64, a
-// camera whose eye is its target, a field of view outside (0, 180), a viewport or pixels per
-// segment that is not positive. Every fixed factor is valid: the tessellator clamps it, and one
+// camera whose eye is its target, a field of view outside (0, 180), a viewport, pixels per
+// segment or outline tolerance that is not positive, bad silhouette settings. Every fixed factor is valid: the tessellator clamps it, and one
 // <= 0 or NaN culls the patch.
 void validate(const TessSettings& settings, const std::string& source);
 

@@ -119,18 +119,14 @@ int casteljau_level(const std::array<glm::dvec3, In>& cur, int degree, double w,
 namespace {
 
 // Tangent coefficient nearest Pi on edge i -> j: plain PN (docs/mathematics.md §2).
-glm::dvec3 pn_tangent(const PnInput& in, int i, int j) {
-  const double wij = glm::dot(in.p[j] - in.p[i], in.n[i]);
-  return (2.0 * in.p[i] + in.p[j] - wij * in.n[i]) / 3.0;
-}
+glm::dvec3 pn_tangent(const PnInput& in, int i, int j) { return pn_tangent_point(in.p[i], in.p[j], in.n[i]); }
 
 // The nets from the ten tangent coefficients' rule and the corner normals of the normal field.
 template <class Tangent>
-PnPatch build_patch(const PnInput& in, const std::array<glm::dvec3, 3>& field_normals, NormalMode mode,
+PnPatch build_patch(const std::array<glm::dvec3, 3>& P, const std::array<glm::dvec3, 3>& field_normals, NormalMode mode,
                     Tangent tangent) {
   PnPatch patch;
   patch.mode = mode;
-  const auto& P = in.p;
   const auto& N = field_normals;
 
   auto& b = patch.b;
@@ -181,8 +177,23 @@ PnPatch build_patch(const PnInput& in, const std::array<glm::dvec3, 3>& field_no
 
 }  // namespace
 
+glm::dvec3 pn_tangent_point(const glm::dvec3& pi, const glm::dvec3& pj, const glm::dvec3& ni) {
+  const double wij = glm::dot(pj - pi, ni);
+  return (2.0 * pi + pj - wij * ni) / 3.0;
+}
+
+glm::dvec3 sharp_normal(const glm::dvec3& n, const VertexTags& tags, const glm::dvec3& face) {
+  const double side = glm::dot(face, tags.delta) >= 0.0 ? 1.0 : -1.0;
+  return glm::normalize(n + side * tags.sigma * tags.delta);
+}
+
 PnPatch make_patch(const PnInput& in, NormalMode mode) {
-  return build_patch(in, in.n, mode, [&](int i, int j) { return pn_tangent(in, i, j); });
+  return build_patch(in.p, in.n, mode, [&](int i, int j) { return pn_tangent(in, i, j); });
+}
+
+PnPatch make_patch_from_tangents(const std::array<glm::dvec3, 3>& p, const std::array<glm::dvec3, 3>& field_normals,
+                                 const std::array<std::array<glm::dvec3, 3>, 3>& tangent, NormalMode mode) {
+  return build_patch(p, field_normals, mode, [&](int i, int j) { return tangent[i][j]; });
 }
 
 PnPatch make_stpn_patch(const PnInput& in, const std::array<VertexTags, 3>& tags, NormalMode mode) {
@@ -194,8 +205,7 @@ PnPatch make_stpn_patch(const PnInput& in, const std::array<VertexTags, 3>& tags
   for (int i = 0; i < 3; ++i) {
     const VertexTags& t = tags[static_cast<std::size_t>(i)];
     if (!t.tagged()) continue;
-    const double side = glm::dot(face, t.delta) >= 0.0 ? 1.0 : -1.0;
-    sharp[static_cast<std::size_t>(i)] = glm::normalize(N[i] + side * t.sigma * t.delta);
+    sharp[static_cast<std::size_t>(i)] = sharp_normal(N[i], t, face);
   }
   auto tangent = [&](int j, int k) {
     const VertexTags& tj = tags[static_cast<std::size_t>(j)];
@@ -210,7 +220,7 @@ PnPatch make_stpn_patch(const PnInput& in, const std::array<VertexTags, 3>& tags
     const glm::dvec3 x = glm::normalize((1.0 - tj.sigma) * N[j] + tj.sigma * sharp[static_cast<std::size_t>(j)]);
     return d + project(x) * x;
   };
-  return build_patch(in, sharp, mode, tangent);
+  return build_patch(in.p, sharp, mode, tangent);
 }
 
 // The basis is written so that a patch edge gives the same bits from both patches that share it

@@ -39,6 +39,18 @@ struct PnVertex {
 // Builds the control nets of docs/mathematics.md §2-§4 for the chosen normal mode.
 PnPatch make_patch(const PnInput& in, NormalMode mode);
 
+// The PN tangent point nearest pi on the edge to pj: (2 pi + pj - ((pj - pi)·ni) ni) / 3.
+glm::dvec3 pn_tangent_point(const glm::dvec3& pi, const glm::dvec3& pj, const glm::dvec3& ni);
+
+// A tagged vertex's sharp normal N' = normalize(N + s σ Δ) on the side s of its crease that a
+// face with (unnormalized) normal `face` lies on: s = +1 if face·Δ >= 0, else -1 (docs/stpn.md).
+glm::dvec3 sharp_normal(const glm::dvec3& n, const VertexTags& tags, const glm::dvec3& face);
+
+// The nets from given tangent points (tangent[i][j]: the one nearest corner i on the edge to
+// corner j), b111 from them, and the normal field of the corner normals `field_normals`.
+PnPatch make_patch_from_tangents(const std::array<glm::dvec3, 3>& p, const std::array<glm::dvec3, 3>& field_normals,
+                                 const std::array<std::array<glm::dvec3, 3>, 3>& tangent, NormalMode mode);
+
 // Scalar-tagged PN control points (docs/mathematics.md §9): each vertex's sharp normal on the
 // triangle's side of its crease replaces its normal in the normal field, and each tangent
 // coefficient follows the vertex's tags. A vertex whose tags are neutral takes exactly the

@@ -133,8 +133,11 @@ namespace {
 // the Bernstein sum with the pattern's basis values: the same surface as de Casteljau in fewer
 // operations (it differs from de Casteljau only in rounding, ~1e-16 relative); the INT
 // operations counted are those the unit's de Casteljau performs.
+// With silhouettes (`silhouette` given) the control points are the blended ones of
+// make_silhouette_patch, on a tagged mesh with each face's sharp normals (docs/mathematics.md §11).
 void evaluate_patch(const Mesh& mesh, std::size_t t, const DomainPattern& domain, NormalMode mode,
-                    glm::dvec3* positions, glm::dvec3* normals, TessellationSummary& summary) {
+                    const MeshSilhouette* silhouette, glm::dvec3* positions, glm::dvec3* normals,
+                    TessellationSummary& summary) {
   const glm::uvec3& tri = mesh.triangles[t];
   PnInput input;
   std::array<VertexTags, 3> tags{};
@@ -144,7 +147,9 @@ void evaluate_patch(const Mesh& mesh, std::size_t t, const DomainPattern& domain
     if (mesh.has_tags()) tags[c] = mesh.tags[tri[c]];
   }
   // A tagged mesh takes the scalar-tagged control points (plain PN where tags are neutral).
-  const PnPatch patch = mesh.has_tags() ? make_stpn_patch(input, tags, mode) : make_patch(input, mode);
+  const PnPatch patch = silhouette       ? make_silhouette_patch(input, silhouette->patch(mesh, t), mode)
+                        : mesh.has_tags() ? make_stpn_patch(input, tags, mode)
+                                          : make_patch(input, mode);
   summary.degenerate_edges += static_cast<std::uint64_t>(patch.degenerate_edges);
   if (is_zero_area(input.p[0], input.p[1], input.p[2])) ++summary.degenerate_triangles;
   for (std::size_t i = 0; i < domain.basis.size(); ++i) {
@@ -173,7 +178,8 @@ void add(TessellationSummary& into, const TessellationSummary& s) {
 // independent, so the sink sees exactly what the sequential loop gives it, in the same order;
 // memory stays a few batches whatever the mesh.
 TessellationSummary tessellate_uniform_parallel(const Mesh& mesh, const DomainPattern& domain, NormalMode mode,
-                                                const PatchSink& sink, unsigned workers) {
+                                                const MeshSilhouette* silhouette, const PatchSink& sink,
+                                                unsigned workers) {
   const std::size_t patch_vertices = domain.points.size();
   // About 64 Ki vertices per batch: large enough that handing batches over costs nothing.
   const std::size_t batch_patches = std::max<std::size_t>(1, (std::size_t{1} << 16) / patch_vertices);
@@ -212,7 +218,7 @@ TessellationSummary tessellate_uniform_parallel(const Mesh& mesh, const DomainPa
         slot.normals.resize((end - first) * patch_vertices);
         slot.summary = {};
         for (std::size_t t = first; t < end; ++t)
-          evaluate_patch(mesh, t, domain, mode, &slot.positions[(t - first) * patch_vertices],
+          evaluate_patch(mesh, t, domain, mode, silhouette, &slot.positions[(t - first) * patch_vertices],
                          &slot.normals[(t - first) * patch_vertices], slot.summary);
       } catch (...) {
         std::lock_guard lock(mutex);
@@ -277,9 +283,14 @@ TessellationSummary tessellate_uniform_parallel(const Mesh& mesh, const DomainPa
 
 }  // namespace
 
-TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settings, NormalMode mode,
+TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& given, NormalMode mode,
                                     const PatchSink& sink) {
-  validate(mesh, settings);
+  validate(mesh, given);
+  TessSettings settings = given;
+  bind_silhouette(settings, mesh);
+  // The blend only with --silhouette (and not blend=off); the silhouette rule alone changes the
+  // factors, not the patches.
+  const MeshSilhouette* silhouette = settings.silhouette.blends() ? settings.silhouette_field.get() : nullptr;
   PatternCache patterns(settings);
 
   // The uniform pattern is one pattern for every patch: worth spreading over the cores when the
@@ -287,7 +298,7 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settin
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   if (settings.kind == PatternKind::Uniform && cores > 1 && !mesh.triangles.empty() &&
       mesh.triangles.size() * patterns.pattern(mesh, 0).points.size() > (std::size_t{1} << 17))
-    return tessellate_uniform_parallel(mesh, patterns.pattern(mesh, 0), mode, sink, cores);
+    return tessellate_uniform_parallel(mesh, patterns.pattern(mesh, 0), mode, silhouette, sink, cores);
 
   // The two buffers every patch is written into: memory stays one patch, whatever the mesh.
   std::vector<glm::dvec3> positions, normals;
@@ -300,7 +311,7 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settin
     }
     positions.resize(domain.points.size());
     normals.resize(domain.points.size());
-    evaluate_patch(mesh, t, domain, mode, positions.data(), normals.data(), summary);
+    evaluate_patch(mesh, t, domain, mode, silhouette, positions.data(), normals.data(), summary);
 
     PatchView view;
     view.triangle = static_cast<std::uint32_t>(t);

@@ -279,6 +279,9 @@ def option_cases(mesh: str) -> list[Case]:
 
 # nan,1,1 / -1,1,1 / 0,0,0 cull every patch of the mesh: an empty run is refused everywhere.
 FACTOR_TEXTS = ["1,2", "1,2,3,4", "a,b,c", "nan,1,1", "1,,1", "-1,1,1", "0,0,0", "1;2;3", ",,", "1,2,", "x" * 100000]
+SILHOUETTE_TEXTS = ["", "eye", "eye=1,2", "eye=a,b,c", "eye=nan,0,5", "eye=inf,0,5", "eye=0,0,5,beta=0",
+                    "eye=0,0,5,beta=-1", "eye=0,0,5,beta=nan", "eye=0,0,5,beta=inf", "eye=0,0,5,beta=", "camera",
+                    "sideways", "eye=0,0,5,beta=1,2"]
 CAMERA_TEXTS = ["", "eye=0,0,0,target=0,0,0,fov=60",
                 "eye=0,0,5,target=0,0,0,fov=0", "eye=0,0,5,target=0,0,0,fov=180", "eye=a,b,c,target=0,0,0,fov=60",
                 "eye=0,0,5,target=0,0,0,fov=60,zoom=2", "eye=0,0,5,eye=0,0,6,target=0,0,0,fov=60",
@@ -306,6 +309,13 @@ def factor_cases(mesh: str) -> list[Case]:
         cases.append(Case("factors", cmd + ["--viewport", "640x480"]))
         cases.append(Case("factors", cmd + ["--pixels-per-segment", "8"]))
         cases.append(Case("factors", cmd + ["--partitioning", "integer", "--outer", "0,0,0"]))
+    # Silhouettes: the reference commands refuse bad eyes and widths; the unit has no silhouette rule.
+    for cmd in (["tessellate", mesh, "-o", "{work}/o.ply"], ["render", mesh, "-o", "{work}/o.png"],
+                ["info", mesh]):
+        for text in SILHOUETTE_TEXTS:
+            cases.append(Case("silhouette", cmd + ["--silhouette", text]))
+    for cmd in (["sim", mesh, "-o", "{work}/o.ply"], ["cosim", mesh, "--int-blocks", "2"]):
+        cases.append(Case("silhouette", cmd + ["--adaptive", "silhouette", "--camera", "eye=0,0,5"]))
     return cases
 
 
