@@ -46,14 +46,16 @@ std::string TessSettings::describe() const {
 
 namespace {
 
-// Pixels per mesh unit at the edge's midpoint: f / |(a + b)/2 − eye| with f the focal length in
-// pixels of the viewport's height. An edge through the eye would be infinitely large on screen;
-// its factor is then the maximum.
-double pixels_per_unit(const ScreenCamera& camera, const glm::dvec3& a, const glm::dvec3& b) {
+// What both rules project with: the focal length in pixels of the viewport's height, and the
+// distance from the eye to the edge's midpoint. An edge through the eye would be infinitely
+// large on screen; its factor is then the maximum.
+struct Projection {
+  double focal_pixels, distance;
+};
+Projection project(const ScreenCamera& camera, const glm::dvec3& a, const glm::dvec3& b) {
   const double focal_pixels = 0.5 * camera.height / std::tan(0.5 * camera.fov_deg * M_PI / 180.0);
   const glm::dvec3 mid = 0.5 * (a + b);
-  const double distance = std::max(glm::length(mid - camera.eye), 1e-300);
-  return focal_pixels / distance;
+  return {focal_pixels, std::max(glm::length(mid - camera.eye), 1e-300)};
 }
 
 double clamp_factor(double segments) { return std::clamp(segments, 1.0, static_cast<double>(kMaxTessFactor)); }
@@ -62,13 +64,15 @@ double clamp_factor(double segments) { return std::clamp(segments, 1.0, static_c
 
 float adaptive_edge_factor(const ScreenCamera& camera, double pixels_per_segment, const glm::dvec3& a,
                            const glm::dvec3& b) {
+  const Projection p = project(camera, a, b);
   const double length = glm::length(a - b);
-  return static_cast<float>(clamp_factor(length * pixels_per_unit(camera, a, b) / pixels_per_segment));
+  return static_cast<float>(clamp_factor(length * p.focal_pixels / (p.distance * pixels_per_segment)));
 }
 
 float silhouette_edge_factor(const ScreenCamera& camera, double outline_tolerance, double alpha, double deviation,
                              const glm::dvec3& a, const glm::dvec3& b) {
-  const double offset_pixels = alpha * deviation * pixels_per_unit(camera, a, b);
+  const Projection p = project(camera, a, b);
+  const double offset_pixels = alpha * deviation * (p.focal_pixels / p.distance);
   return static_cast<float>(clamp_factor(kChordErrorFactor * std::sqrt(offset_pixels / outline_tolerance)));
 }
 
