@@ -130,13 +130,6 @@ MeshSilhouette::MeshSilhouette(const Mesh& mesh, const glm::dvec3& eye, double b
       alpha = silhouetteness(eye, beta, mesh.positions[a], mesh.positions[b], normals[s.triangle], normals[t.triangle]);
       across_[s.triangle][s.edge] = t.triangle;
       across_[t.triangle][t.edge] = s.triangle;
-      if (mesh.has_tags()) {
-        for (const std::uint32_t v : {a, b}) {
-          const glm::dvec3 ns = corner_shading_normal(mesh, s.triangle, corner_of(mesh.triangles[s.triangle], v));
-          const glm::dvec3 nt = corner_shading_normal(mesh, t.triangle, corner_of(mesh.triangles[t.triangle], v));
-          if (ns != nt) ++counts_.feature_ends;
-        }
-      }
     }
     // The deviation over every face of the edge and both ends (a feature end's offset replaces
     // the faces' smooth ones there).
@@ -156,6 +149,7 @@ MeshSilhouette::MeshSilhouette(const Mesh& mesh, const glm::dvec3& eye, double b
           const glm::dvec3 nt = corner_shading_normal(mesh, t, corner_of(mesh.triangles[t], v));
           if (ns != nt) {
             feature = true;
+            ++counts_.feature_ends;
             const glm::dvec3 cross = glm::cross(ns, nt);  // s < t: the lower face first, as patch() does
             const double length = glm::length(cross);
             if (length > kParallel * glm::length(ns) * glm::length(nt))
