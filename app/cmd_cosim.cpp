@@ -82,7 +82,8 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
                    "no RTL build implements this hardware (int_blocks " + std::to_string(cfg.int_blocks) +
                        ", cpg_lanes " + std::to_string(cfg.cpg.lanes) + ", cpg_digit_bits " +
                        std::to_string(cfg.cpg.digit_bits) + ", cpg_product_reg " + std::to_string(cfg.cpg.product_reg) +
-                       ", cpg_tags " + std::to_string(cfg.cpg_tags) +
+                       ", cpg_tags " + std::to_string(cfg.cpg_tags) + ", alpha_bits " +
+                       std::to_string(cfg.format.alpha_bits) +
                        (a.verif ? ", --verif" : "") +
                        "); the RTL builds are " + known_builds() + " (docs/rtl.md adds one)");
 }
@@ -128,7 +129,13 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     if (a.random_count == 0) throw InputError("command line", "--partitioning", "'mixed' needs --random");
     pattern_options.partitioning = "integer";
   }
-  const std::optional<TessSettings> pattern = pattern_options.settings("cosim", cfg.tess_factor);
+  std::optional<TessSettings> pattern = pattern_options.settings("cosim", cfg.tess_factor);
+  if (a.pattern.silhouette_given() && a.random_count > 0)
+    throw InputError("command line", "--silhouette", "needs a mesh; --random draws every edge's alpha (a build that takes it)");
+  if (a.pattern.silhouette_given() && !cfg.format.takes_alpha())
+    throw InputError("command line", "--silhouette",
+                     "the blend needs a unit that takes alpha (alpha_bits > 0, e.g. --variant n3_lat3 with its "
+                     "parameters; docs/rtl.md)");
   if (pattern && a.random_count > 0 && (pattern->source == FactorSource::Adaptive || !a.pattern.outer.empty()))
     throw InputError("command line", a.pattern.outer.empty() ? "--adaptive" : "--outer",
                      "needs a mesh; --random draws the factors (with --partitioning)");
@@ -147,6 +154,7 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     if (a.random_max_L < 1 || a.random_max_L > kMaxTessFactor)
       throw InputError("command line", "--random-max-L", std::to_string(a.random_max_L) + " is outside 1..64");
     source = std::to_string(a.random_count) + " random triangles";
+    if (cfg.format.takes_alpha()) source += ", random alpha";
     if (pattern)
       source += std::string(", D3D11 pattern with random factors up to ") + std::to_string(a.random_max_L) + ", " +
                 (mixed ? "mixed partitionings" : partitioning_name(pattern->partitioning));
@@ -155,6 +163,7 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     if (!cfg.cpg_tags) warn_tags_ignored(mesh, "cosim");
     else warn_tags_lost(mesh, cfg.format);
     const sim::HostScaling scaling = sim::host_scaling(mesh);
+    const std::shared_ptr<const MeshSilhouette> silhouette = pattern_options.silhouette_for(pattern, cfg.tess_factor, mesh);
     TessSettings settings;
     settings.L = cfg.tess_factor;
     if (pattern) settings = *pattern;
@@ -166,12 +175,13 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
         ++culled;
         continue;
       }
+      if (silhouette) sim::set_silhouette_alpha(*tri, *silhouette, i, cfg.format);
       tri->id = static_cast<std::uint32_t>(stream.size());  // stream positions: a culled patch is not sent
       stream.push_back(*tri);
     }
     if (stream.empty())
       throw InputError("command line", "--outer", "the factors cull every patch (an outer factor <= 0 or NaN): nothing to run");
-    source = a.mesh + (pattern ? " (" + pattern->describe() + ")" : "");
+    source = a.mesh + (pattern ? " (" + pattern->describe() + ")" : "") + (silhouette ? ", silhouette blend" : "");
     if (culled) source += ", " + std::to_string(culled) + " culled patches not sent";
   }
 
@@ -205,6 +215,7 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
       stream = cosim::random_triangles(a.random_count, opts.seed, cfg.format, a.random_max_L, 0.1, a.random_extent,
                                        cfg.cpg_tags != 0);
       if (pattern) cosim::assign_random_patterns(stream, opts.seed, a.random_max_L, random_partitioning);
+      if (cfg.format.takes_alpha()) cosim::assign_random_alpha(stream, opts.seed, cfg.format.alpha_bits);
     }
     std::cout << "stream: " << source << "\n" << std::flush;
     std::uint64_t stream_vertices = 0;

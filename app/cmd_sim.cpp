@@ -122,7 +122,7 @@ int parse_chunks(const std::string& text) {
 }
 
 void run_sim(const SimArgs& a, const ConfigFlags& flags) {
-  const sim::UnitConfig cfg = flags.config();
+  sim::UnitConfig cfg = flags.config();
   int chunks = parse_chunks(a.chunks);
   // A trace and the schedule watch one unit cycle by cycle: there is no one unit to watch.
   if (chunks != 1 && !a.trace.empty())
@@ -148,7 +148,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     trace_window = {from, to + 1};
   }
   check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}});
-  const std::optional<TessSettings> pattern = a.pattern.settings("sim", cfg.tess_factor);
+  std::optional<TessSettings> pattern = a.pattern.settings("sim", cfg.tess_factor);
   if (pattern && cfg.format.bary_bits < 16)
     throw InputError(flags.config_file().empty() ? "command line" : flags.config_file(), "bary_bits",
                      "the D3D11 pattern's points are 16.16: it needs bary_bits >= 16, not " +
@@ -157,7 +157,15 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   const Mesh mesh = load_mesh(a.mesh);
   if (!cfg.cpg_tags) warn_tags_ignored(mesh, "sim");
   else warn_tags_lost(mesh, cfg.format);
-  const sim::MeshPatterns patterns(pattern ? &*pattern : nullptr);
+  const std::shared_ptr<const MeshSilhouette> silhouette = a.pattern.silhouette_for(pattern, cfg.tess_factor, mesh);
+  if (silhouette && !cfg.format.takes_alpha()) {
+    // The blend needs the unit's alpha input: a configuration without one gets the default width.
+    cfg.format.alpha_bits = sim::kDefaultAlphaBits;
+    std::fprintf(stderr, "tessim: note: --silhouette: the unit takes alpha with alpha_bits %d (the configuration had 0)\n",
+                 cfg.format.alpha_bits);
+  }
+  sim::MeshPatterns patterns(pattern ? &*pattern : nullptr);
+  patterns.silhouette = silhouette.get();
   const std::uint64_t triangles = mesh.triangle_count();
   if (chunks == 0)
     chunks = static_cast<int>(std::min<std::uint64_t>({std::max(1u, std::thread::hardware_concurrency()),

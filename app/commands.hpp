@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <memory>
+#include <optional>
 #include <string_view>
 #include <type_traits>
 #include <vector>
@@ -20,6 +22,7 @@
 #include "model/factors.hpp"
 #include "model/mesh.hpp"
 #include "model/normal_mode.hpp"
+#include "model/silhouette.hpp"
 #include "sim/config.hpp"
 
 namespace tessim::app {
@@ -95,6 +98,16 @@ void print_silhouette_counts(std::FILE* out, const MeshSilhouette& silhouette);
 struct UnitPatternOptions {
   std::string partitioning, outer, inner;
   AdaptiveOptions adaptive;
+  std::string silhouette;  // --silhouette, as PatternOptions
+  const CLI::Option* silhouette_option = nullptr;
+
+  bool silhouette_given() const { return !silhouette.empty() || (silhouette_option && silhouette_option->count() > 0); }
+  // The silhouette weights the host sends with the mesh's triangles (--silhouette with the blend
+  // on), or nullptr. Builds them into `pattern` first when it is a D3D11 pattern (its silhouette
+  // rule needs them too). InputError naming the mesh's first feature-end vertex: the unit's CPG
+  // blends smooth ends only.
+  std::shared_ptr<const MeshSilhouette> silhouette_for(std::optional<TessSettings>& pattern, int L,
+                                                      const Mesh& mesh) const;
 
   bool given() const { return !partitioning.empty() || !outer.empty() || !inner.empty() || adaptive.given(); }
   // std::nullopt: the uniform pattern. Otherwise the D3D11 settings, every factor L unless

@@ -389,17 +389,14 @@ void add_unit_pattern_options(CLI::App& cmd, UnitPatternOptions& o, const char* 
   cmd.add_option("--outer", o.outer, "D3D11 outer factors A,B,C (edges u=0, v=0, w=0), the same for every patch");
   cmd.add_option("--inner", o.inner, "D3D11 inner factor with --outer (default: the largest outer factor)");
   add_adaptive_options(cmd, o.adaptive, command);
+  o.silhouette_option = add_silhouette_option(cmd, o.silhouette);
 }
 
 std::optional<TessSettings> UnitPatternOptions::settings(const char* command, int L) const {
-  // The unit's interface carries no per-edge silhouetteness: the silhouette rule is the float
-  // reference's (tessellate, render).
-  if (adaptive.adaptive == "silhouette")
-    throw InputError(kCommandLine, "--adaptive",
-                     "'silhouette' needs each edge's silhouetteness, which the unit's triangle interface does not "
-                     "carry; tessellate and render have it");
   if (!given()) {
     adaptive.check_given_alone();
+    if (silhouette_given() && parse_silhouette_option(silhouette).eye_from_camera)
+      throw InputError(kCommandLine, "--silhouette", "'camera' takes the eye of --adaptive ... --camera, which is not given");
     return std::nullopt;
   }
   PatternOptions p;
@@ -408,7 +405,37 @@ std::optional<TessSettings> UnitPatternOptions::settings(const char* command, in
   p.outer = outer;
   p.inner = inner;
   p.adaptive = adaptive;
+  p.silhouette = silhouette;
+  p.silhouette_option = silhouette_option;
   return p.settings(command);
+}
+
+std::shared_ptr<const MeshSilhouette> UnitPatternOptions::silhouette_for(std::optional<TessSettings>& pattern, int L,
+                                                                        const Mesh& mesh) const {
+  TessSettings uniform;
+  TessSettings* s = pattern ? &*pattern : &uniform;
+  if (!pattern) {
+    if (!silhouette_given()) return nullptr;
+    uniform.L = L;
+    uniform.silhouette = parse_silhouette_option(silhouette);
+  }
+  bind_silhouette(*s, mesh);
+  if (!s->silhouette.blends() || !s->silhouette_field) return nullptr;
+  const MeshSilhouette& field = *s->silhouette_field;
+  if (field.counts().feature_ends > 0) {
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const PatchSilhouette patch = field.patch(mesh, t);
+      for (int i = 0; i < 3; ++i)
+        for (const PatchSilhouette::End& end : patch.end[static_cast<std::size_t>(i)])
+          if (end.feature)
+            throw InputError(mesh.source.empty() ? std::string("mesh") : mesh.source,
+                             "vertex " + std::to_string(mesh.triangles[t][i]),
+                             "a feature end of the silhouette (its scalar tags give its faces different normals): the "
+                             "unit's CPG blends smooth ends only; tessellate and render compute feature ends "
+                             "(docs/mathematics.md §11)");
+    }
+  }
+  return s->silhouette_field;
 }
 
 glm::ivec2 parse_image_size(std::string_view text, std::string_view option) {

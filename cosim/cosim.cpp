@@ -234,7 +234,8 @@ CosimReport run_cosim_until(const std::vector<sim::TriangleFx>& stream, const Co
     if (stream[i].id != i)
       throw InputError("co-simulation stream", "triangle " + std::to_string(i),
                        "patch ids must be the stream positions");
-    const std::string problem = sim::tri_pattern_problem(stream[i]);
+    std::string problem = sim::tri_pattern_problem(stream[i]);
+    if (problem.empty()) problem = sim::tri_alpha_problem(stream[i], opts.unit.format);
     if (!problem.empty()) throw InputError("co-simulation stream", "triangle " + std::to_string(i), problem);
     if (stream[i].pattern != sim::TriPattern::uniform && opts.unit.format.bary_bits < 16)
       throw InputError("co-simulation configuration", "bary_bits",
@@ -380,6 +381,22 @@ std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t s
     out.push_back(t);
   }
   return out;
+}
+
+std::array<std::size_t, 4> assign_random_alpha(std::vector<sim::TriangleFx>& stream, std::uint64_t seed,
+                                               int alpha_bits) {
+  sim::SplitMix64 rng(seed ^ 0xa1fa0a1fa0a1fa0aULL);
+  const std::uint32_t step = std::uint32_t{1} << (sim::kAlphaFracBits - alpha_bits);
+  const std::array<std::uint32_t, 4> special{0, sim::kAlphaOne, step, sim::kAlphaOne - step};
+  std::array<std::size_t, 4> seen{};
+  for (sim::TriangleFx& t : stream) {
+    for (std::uint32_t& a : t.alpha) {
+      const std::uint64_t pick = rng.next() % 8;
+      a = pick < 4 ? special[pick] : sim::quantize_alpha(rng.uniform(), alpha_bits);
+      for (std::size_t i = 0; i < special.size(); ++i) seen[i] += a == special[i];
+    }
+  }
+  return seen;
 }
 
 void assign_random_patterns(std::vector<sim::TriangleFx>& stream, std::uint64_t seed, int max_factor,

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <atomic>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -116,5 +117,12 @@ std::vector<sim::TriangleFx> random_triangles(std::size_t count, std::uint64_t s
 // drawn per triangle. Drawn from a generator of its own: the geometry of a seed's stream stays.
 void assign_random_patterns(std::vector<sim::TriangleFx>& stream, std::uint64_t seed, int max_factor,
                             std::optional<Partitioning> partitioning = std::nullopt);
+
+// Gives every edge of the stream a random silhouette weight rounded to `alpha_bits` (1..16): a
+// quarter each of the ends of the range that the blend's arithmetic treats specially, 0 and 1,
+// of its smallest step 2^-A and of 1 - 2^-A or uniform values. Its own generator, like
+// assign_random_patterns. Returns how many edges got 0, 1, 2^-A and 1 - 2^-A, in that order.
+std::array<std::size_t, 4> assign_random_alpha(std::vector<sim::TriangleFx>& stream, std::uint64_t seed,
+                                               int alpha_bits);
 
 }  // namespace tessim::cosim

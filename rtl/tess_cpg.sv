@@ -26,14 +26,18 @@ module tess_cpg #(
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
   parameter int unsigned CpgProductReg = tess_pkg::CpgProductReg,
   parameter int unsigned CpgTags       = tess_pkg::CpgTags,
+  parameter int unsigned AlphaBits     = tess_pkg::AlphaBits,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
+  localparam int unsigned AlphaW = AlphaBits + 1,
   localparam int unsigned TriW   = 18 * W + tess_pkg::DescBits + tess_pkg::IdBits
                                  + ((CpgTags != 0) ? 18 * W : 0)
+                                 + ((AlphaBits != 0) ? 3 * AlphaW : 0)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
   input  logic [tess_pkg::ModeBits-1:0]     mode_i,
-  // TRI FIFO head: {tags (18W, with CpgTags), id, pattern descriptor, N (9W), P (9W)}
+  // TRI FIFO head: {alpha (3 (A + 1), with AlphaBits), tags (18W, with CpgTags), id, pattern
+  // descriptor, N (9W), P (9W)}
   input  logic                              tri_avail_i,
   input  logic [TriW-1:0]                   tri_i,
   output logic                              tri_pop_o,
@@ -59,7 +63,8 @@ module tess_cpg #(
   // registered products (tess_cpg_edge) add steps to each edge and a cycle to b111.
   localparam int unsigned D        = (W + CpgDigitBits - 1) / CpgDigitBits;
   localparam bit          PR       = (CpgProductReg != 0);
-  localparam int unsigned EdgeLin  = PR ? 9 : 6;
+  // The silhouette blend (AlphaBits) adds a step to the linear edge with registered products.
+  localparam int unsigned EdgeLin  = PR ? 9 + ((AlphaBits != 0) ? 1 : 0) : 6;
   localparam int unsigned EdgeRef  = PR ? D + 11 : D + 8;
   localparam int unsigned EdgeQuad = PR ? 3 * D + 13 : 3 * D + 9;
   localparam int unsigned B111Len  = PR ? 2 : 1;          // b111 cycles
@@ -147,6 +152,7 @@ module tess_cpg #(
   (* mem2reg *) logic [3*W-1:0] n_q [3];
   logic [DescW-1:0]  desc_q;
   logic [IdBits-1:0] id_q;
+  (* mem2reg *) logic [AlphaW-1:0] alpha [3];  // edge e's silhouette weight (1 without AlphaBits)
 
   always_ff @(posedge clk_i) begin
     if (accept) begin
@@ -156,6 +162,21 @@ module tess_cpg #(
       end
       desc_q <= tri_i[18 * W +: DescW];
       id_q   <= tri_i[18 * W + DescW +: IdBits];
+    end
+  end
+  if (AlphaBits != 0) begin : g_alpha
+    (* mem2reg *) logic [AlphaW-1:0] alpha_q [3];
+    always_ff @(posedge clk_i) begin
+      if (accept) begin
+        for (int e = 0; e < 3; e++) alpha_q[e] <= tri_i[TriW - 3 * AlphaW + e * AlphaW +: AlphaW];
+      end
+    end
+    for (genvar e = 0; e < 3; e++) begin : g_e
+      assign alpha[e] = alpha_q[e];
+    end
+  end else begin : g_no_alpha
+    for (genvar e = 0; e < 3; e++) begin : g_e
+      assign alpha[e] = '1;  // unused: the lanes have no blend
     end
   end
 
@@ -493,7 +514,8 @@ module tess_cpg #(
   // triangle is taken, then 3 t for each tangent point in the cycle after it was staged (from the
   // staging register, off the tangent's own path). Each of the six is staged once per triangle,
   // the last one in step 4 of the last edge (E >= 6; step 7 of E >= 9 with registered
-  // products), so x111 is complete in the first b111 cycle.
+  // products, step 8 of E >= 10 with them and the silhouette blend), so x111 is complete in the
+  // first b111 cycle.
   // The sums are modulo 2^X111W and the result fits, so the order does not change a bit.
   // At most one tangent point is staged a cycle per lane (edge pass and tag pass alike): one of
   // all six with one lane, one of each edge's pair {2e, 2e + 1} with three.
@@ -534,14 +556,15 @@ module tess_cpg #(
 
   for (genvar e = 0; e < CpgLanes; e++) begin : g_lane
     // The lane's edge a->b: the edge counter's for a single lane, edge e for three lanes.
-    logic [1:0]      edge_idx;
-    logic [VecW-1:0] pa, pb, na, nb, lane_b111;
+    logic [1:0]        edge_idx;
+    logic [VecW-1:0]   pa, pb, na, nb, lane_b111;
+    logic [AlphaW-1:0] lane_alpha;
     assign edge_idx = (CpgLanes == 1) ? edge_q : 2'(e);
     always_comb begin
       case (edge_idx)
-        2'd0:    begin pa = p_q[0]; pb = p_q[1]; na = nrm[0]; nb = nrm[1]; end
-        2'd1:    begin pa = p_q[1]; pb = p_q[2]; na = nrm[1]; nb = nrm[2]; end
-        default: begin pa = p_q[2]; pb = p_q[0]; na = nrm[2]; nb = nrm[0]; end
+        2'd0:    begin pa = p_q[0]; pb = p_q[1]; na = nrm[0]; nb = nrm[1]; lane_alpha = alpha[0]; end
+        2'd1:    begin pa = p_q[1]; pb = p_q[2]; na = nrm[1]; nb = nrm[2]; lane_alpha = alpha[1]; end
+        default: begin pa = p_q[2]; pb = p_q[0]; na = nrm[2]; nb = nrm[0]; lane_alpha = alpha[2]; end
       endcase
     end
 
@@ -559,7 +582,8 @@ module tess_cpg #(
       .CoordIntBits (CoordIntBits),
       .CoordFracBits(CoordFracBits),
       .DigitBits    (CpgDigitBits),
-      .ProductReg   (CpgProductReg)
+      .ProductReg   (CpgProductReg),
+      .AlphaBits    (AlphaBits)
     ) u_edge (
       .clk_i         (clk_i),
       .mode_reflect_i(mode_reflect),
@@ -572,6 +596,7 @@ module tess_cpg #(
       .pb_i          (pb),
       .na_i          (na),
       .nb_i          (nb),
+      .alpha_i       (lane_alpha),
       .b111_i        ((e == 0) && in_b111),
       .b111_next_i   ((e == 0) && b111_next),
       .x111_i        (x111_q),

@@ -18,10 +18,12 @@ module tess_cpg_array #(
   parameter int unsigned CpgDigitBits  = tess_pkg::CpgDigitBits,
   parameter int unsigned CpgProductReg = tess_pkg::CpgProductReg,
   parameter int unsigned CpgTags       = tess_pkg::CpgTags,
+  parameter int unsigned AlphaBits     = tess_pkg::AlphaBits,
   parameter int unsigned CpgCopies     = tess_pkg::CpgCopies,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
   localparam int unsigned TriW   = 18 * W + tess_pkg::DescBits + tess_pkg::IdBits
                                  + ((CpgTags != 0) ? 18 * W : 0)
+                                 + ((AlphaBits != 0) ? 3 * (AlphaBits + 1) : 0)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,
@@ -83,7 +85,8 @@ module tess_cpg_array #(
       .CpgLanes     (CpgLanes),
       .CpgDigitBits (CpgDigitBits),
       .CpgProductReg(CpgProductReg),
-      .CpgTags      (CpgTags)
+      .CpgTags      (CpgTags),
+      .AlphaBits    (AlphaBits)
     ) u_cpg (
       .clk_i      (clk_i),
       .rst_ni     (rst_ni),

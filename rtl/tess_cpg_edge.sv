@@ -36,6 +36,16 @@
 //   s13+D ..  D square-root steps; s13+2D ..  D division steps (quadratic: E = 3D + 13)
 // and b111 takes two cycles instead of one (issue, then round). sim/cpg.cpp cpg_edge_cycles
 // holds the same E.
+// The silhouette blend (AlphaBits = A > 0) scales each w by the edge's alpha before it meets
+// its normal, w <- round(alpha w / 2^A) on one (A + 1) x DotW multiplier of its own, in the step
+// after w is summed. Without registered products the steps are reordered at no cost:
+//   s0 wa = d.Na   s1 wb = d.Nb; wa <- alpha wa   s2 issue wa Na; wb <- alpha wb
+//   s3 num_b (wb Nb); tangent near a              s4 p = d.s; tangent near b      s5 q = d.d
+// With them, d.s moves into the slot the first w product leaves, and the tangent point near b
+// leaves a step later (linear: E = 10; the divisions start in s10 as before):
+//   s1 issue d.Na   s2 wa = d.Na; issue d.Nb   s3 wb = d.Nb; issue d.s; operand alpha wa
+//   s4 issue wa Na; operand alpha wb   s5 issue wb Nb   s6 issue d.d   s7 tangent near a
+//   s8 tangent near b
 // Every value is exact until the one rounding the C++ reference (sim/cpg.cpp) applies, so the
 // results are bit-identical to compute_control_points whatever DigitBits and ProductReg are.
 module tess_cpg_edge #(
@@ -43,7 +53,9 @@ module tess_cpg_edge #(
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
   parameter int unsigned DigitBits     = tess_pkg::CpgDigitBits,
   parameter int unsigned ProductReg    = tess_pkg::CpgProductReg,
+  parameter int unsigned AlphaBits     = tess_pkg::AlphaBits,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
+  localparam int unsigned AlphaW = AlphaBits + 1,
   localparam int unsigned D      = (W + DigitBits - 1) / DigitBits,
   localparam int unsigned StepW  = $clog2(3 * D + 9 + 4 * ((ProductReg != 0) ? 1 : 0)),
   localparam int unsigned X111W  = W + 5                       // 3 sum(t) - 2 sum(P)
@@ -59,6 +71,7 @@ module tess_cpg_edge #(
   input  logic [3*W-1:0]                pb_i,
   input  logic [3*W-1:0]                na_i,
   input  logic [3*W-1:0]                nb_i,
+  input  logic [AlphaW-1:0]             alpha_i,      // the edge's silhouette weight (AlphaBits)
   input  logic                          b111_i,       // the b111 cycles (lane 0 only), counted
                                                       // by step_i from 0
   input  logic                          b111_next_i,  // the next cycle is b111's first
@@ -90,12 +103,13 @@ module tess_cpg_edge #(
   // Micro-step indices within an edge: the step that issues each product (it is used R steps
   // later) and the steps that use results (sim/cpg.cpp cpg_edge_cycles).
   localparam bit          PR      = (ProductReg != 0);
+  localparam bit          Al      = (AlphaBits != 0);
   localparam int unsigned R       = PR ? 1 : 0;
   localparam int unsigned SDotA   = R;                 // d.Na
-  localparam int unsigned SMulA   = PR ? 3 : 1;         // wa Na
-  localparam int unsigned SDotB   = 2;                 // d.Nb
-  localparam int unsigned SMulB   = PR ? 4 : 3;         // wb Nb
-  localparam int unsigned SDotS   = PR ? 5 : 4;         // d.s
+  localparam int unsigned SMulA   = PR ? (Al ? 4 : 3) : (Al ? 2 : 1);  // wa Na
+  localparam int unsigned SDotB   = Al && !PR ? 1 : 2; // d.Nb
+  localparam int unsigned SMulB   = PR ? (Al ? 5 : 4) : 3;  // wb Nb
+  localparam int unsigned SDotS   = PR ? (Al ? 3 : 5) : 4;  // d.s
   localparam int unsigned SDotD   = PR ? 6 : 5;         // d.d
   localparam int unsigned STanA   = SMulA + 2 * R + 1; // the tangent point near a leaves
   localparam int unsigned STanB   = SMulB + 2 * R + 1; // the tangent point near b leaves
@@ -329,6 +343,25 @@ module tess_cpg_edge #(
     );
   end
 
+  // ------------------------------------------------------------------ silhouette blend
+  // w_alpha = round_half_up(alpha_src alpha / 2^A): alpha 2^A gives w itself, 0 gives 0.
+  logic [DotW-1:0] alpha_src, w_alpha;
+  if (Al) begin : g_alpha
+    localparam int unsigned APW = DotW + AlphaW + 1;
+    localparam logic [APW-1:0] AHalf = APW'(1) << (AlphaBits - 1);
+    logic signed [APW-1:0] a_prod;
+    logic [APW-1:0]        a_rnd;
+    logic                  unused_a_rnd;
+    assign a_prod  = APW'($signed(alpha_src)) * $signed({{(APW - AlphaW){1'b0}}, alpha_i});
+    assign a_rnd   = a_prod + AHalf;
+    assign w_alpha = a_rnd[AlphaBits +: DotW];
+    assign unused_a_rnd = ^{a_rnd[AlphaBits-1:0], a_rnd[APW-1:AlphaBits+DotW]};
+  end else begin : g_no_alpha
+    logic unused_alpha;
+    assign unused_alpha = ^alpha_i;
+    assign w_alpha = alpha_src;
+  end
+
   // ------------------------------------------------------------------ multiplier operands
   // The operands. Without registered products they are selected in the step that issues the
   // product (d.Na in step 0 straight from Pb - Pa, its select nearest the multiplier). With
@@ -353,13 +386,27 @@ module tess_cpg_edge #(
     assign nx_b111  = b111_next_i;
     assign nx_dq_a  = nx_dot_b || nx_dot_s || nx_dot_d;
     assign pdot_abs = pdot_q[DotW-1] ? -pdot_q : pdot_q;  // what step SAbs writes
+    // wa, wb as the w products take them: as they are summed, or held and scaled by alpha.
+    logic [DotW-1:0] w_op;
+    if (Al) begin : g_w_alpha
+      logic [DotW-1:0] wa_q, wb_q;  // d.Na, d.Nb
+      always_ff @(posedge clk_i) begin
+        if (use_dot_a) wa_q <= dot;
+        if (use_dot_b) wb_q <= dot;
+      end
+      assign alpha_src = nx_mul_a ? wa_q : wb_q;
+      assign w_op      = w_alpha;
+    end else begin : g_w_dot
+      assign alpha_src = dot;
+      assign w_op      = dot;
+    end
     for (genvar c = 0; c < 3; c++) begin : g_c
       logic [DotW-1:0]  opa_q;
       logic [MulBW-1:0] opb_q;
       always_ff @(posedge clk_i) begin
         opa_q <= ({DotW{nx_dot_a}}            & DotW'(d_now[c]))
                | ({DotW{nx_dq_a}}             & DotW'($signed(d_q[c])))
-               | ({DotW{nx_mul_a || nx_mul_b}} & dot)   // wa = d.Na, wb = d.Nb, as they are summed
+               | ({DotW{nx_mul_a || nx_mul_b}} & w_op)  // wa = d.Na, wb = d.Nb
                | ({DotW{nx_num}}              & pdot_abs)
                | ({DotW{nx_mm}}               & DotW'($signed(m_next[c*W +: W])))
                | ({DotW{nx_b111}}             & DotW'($signed(x111_next_i[c*X111W +: X111W])));
@@ -378,11 +425,16 @@ module tess_cpg_edge #(
     assign unused_ops = (^x111_i) ^ use_dot_a ^ use_dot_b;
   end else begin : g_ops_now
     logic iss_dot_a, iss_mul_a, iss_dot_b, iss_mul_b, iss_dot_s, iss_dot_d, iss_num, iss_mm;
-    logic iss_b111, dq_op_a;
-    logic [DotW-1:0] wa_q, wb_q;  // d.Na, d.Nb
+    logic iss_b111, dq_op_a, st_alpha_a, st_alpha_b;
+    logic [DotW-1:0] wa_q, wb_q;  // d.Na, d.Nb (then scaled by alpha in the step after)
+    assign st_alpha_a = Al && edge_i && (step_i == StepW'(SDotA + 1));
+    assign st_alpha_b = Al && edge_i && (step_i == StepW'(SDotB + 1));
+    assign alpha_src  = st_alpha_a ? wa_q : wb_q;
     always_ff @(posedge clk_i) begin
       if (use_dot_a) wa_q <= dot;
+      else if (st_alpha_a) wa_q <= w_alpha;
       if (use_dot_b) wb_q <= dot;
+      else if (st_alpha_b) wb_q <= w_alpha;
     end
     assign iss_dot_a = edge_i && (step_i == StepW'(SDotA));
     assign iss_mul_a = edge_i && (step_i == StepW'(SMulA));

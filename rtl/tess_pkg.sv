@@ -10,6 +10,7 @@ package tess_pkg;
   localparam int unsigned CoordIntBits  = 3;   // I
   localparam int unsigned CoordFracBits = 20;  // F
   localparam int unsigned BaryBits      = 16;  // B
+  localparam int unsigned AlphaBits     = 0;   // A: silhouette weight fraction bits; 0 = no alpha (plain PN)
   localparam int unsigned IntBlocks     = 2;   // N
   localparam int unsigned IntLatency    = 1;   // Λ
   localparam int unsigned Contexts      = 4;   // V

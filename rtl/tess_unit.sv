@@ -9,6 +9,7 @@ module tess_unit #(
   parameter int unsigned CoordIntBits  = tess_pkg::CoordIntBits,
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
   parameter int unsigned BaryBits      = tess_pkg::BaryBits,
+  parameter int unsigned AlphaBits     = tess_pkg::AlphaBits,
   parameter int unsigned IntBlocks     = tess_pkg::IntBlocks,
   parameter int unsigned IntLatency    = tess_pkg::IntLatency,
   parameter int unsigned Contexts      = tess_pkg::Contexts,
@@ -22,6 +23,7 @@ module tess_unit #(
   parameter int unsigned CpgCopies     = tess_pkg::CpgCopies,
   parameter int unsigned InjectBug     = tess_pkg::InjectBug,
   localparam int unsigned W            = 1 + CoordIntBits + CoordFracBits,
+  localparam int unsigned AlphaW       = AlphaBits + 1,             // alpha in 0..2^A
   localparam int unsigned CtrW         = tess_pkg::CounterBits
 ) (
   input  logic                            clk_i,
@@ -38,6 +40,9 @@ module tess_unit #(
   input  logic [tess_pkg::IdBits-1:0]     tri_id_i,
   // Scalar tags, read only with CpgTags: vertex v's Δ (3W), σ, θ, β at [6vW +: 6W]
   input  logic [18*W-1:0]                 tri_tags_i,
+  // Silhouette weights, read only with AlphaBits > 0: edge e's (corners e -> e + 1) alpha at
+  // [e AlphaW +: AlphaW], unsigned with AlphaBits fraction bits, 0..2^AlphaBits
+  input  logic [3*AlphaW-1:0]             tri_alpha_i,
   // Vertices out
   output logic                            vtx_valid_o,
   input  logic                            vtx_ready_i,
@@ -74,7 +79,9 @@ module tess_unit #(
   localparam int unsigned IdBits = tess_pkg::IdBits;
   localparam int unsigned FlagW  = tess_pkg::FlagBits;
   localparam int unsigned DescW  = tess_pkg::DescBits;
-  localparam int unsigned TriW   = 18 * W + DescW + IdBits + ((CpgTags != 0) ? 18 * W : 0);
+  localparam int unsigned TagW   = (CpgTags != 0) ? 18 * W : 0;
+  localparam int unsigned AlphaWords = (AlphaBits != 0) ? 3 * AlphaW : 0;
+  localparam int unsigned TriW   = 18 * W + DescW + IdBits + TagW + AlphaWords;
   localparam int unsigned VtxW   = 6 * W + 2 * (BaryBits + 1) + 3 * LBits + tess_pkg::IndexBits + IdBits + 1 + FlagW;
   localparam int unsigned TriCntW = $clog2(TriFifoDepth + 1);
   localparam int unsigned VtxCntW = $clog2(VtxFifoDepth + 1);
@@ -86,13 +93,22 @@ module tess_unit #(
   assign tri_ready_o = !tri_full;
   assign tri_push    = tri_valid_i && tri_ready_o;
 
+  // The TRI FIFO word: {alpha (with AlphaBits), tags (with CpgTags), id, descriptor, N, P}.
+  logic [TriW-AlphaWords-1:0] tri_base;
   logic [TriW-1:0] tri_in;
   if (CpgTags != 0) begin : g_tri_tags
-    assign tri_in = {tri_tags_i, tri_id_i, tri_factors_i, tri_pattern_i, tri_l_i, tri_n_i, tri_p_i};
+    assign tri_base = {tri_tags_i, tri_id_i, tri_factors_i, tri_pattern_i, tri_l_i, tri_n_i, tri_p_i};
   end else begin : g_tri_plain
     logic unused_tags;  // a plain-PN unit ignores the tag inputs
     assign unused_tags = ^tri_tags_i;
-    assign tri_in = {tri_id_i, tri_factors_i, tri_pattern_i, tri_l_i, tri_n_i, tri_p_i};
+    assign tri_base = {tri_id_i, tri_factors_i, tri_pattern_i, tri_l_i, tri_n_i, tri_p_i};
+  end
+  if (AlphaBits != 0) begin : g_tri_alpha
+    assign tri_in = {tri_alpha_i, tri_base};
+  end else begin : g_tri_no_alpha
+    logic unused_alpha;  // a unit without the silhouette blend ignores alpha
+    assign unused_alpha = ^tri_alpha_i;
+    assign tri_in = tri_base;
   end
 
   tess_fifo #(.Width(TriW), .Depth(TriFifoDepth)) u_tri_fifo (
@@ -123,6 +139,7 @@ module tess_unit #(
     .CpgDigitBits (CpgDigitBits),
     .CpgProductReg(CpgProductReg),
     .CpgTags      (CpgTags),
+    .AlphaBits    (AlphaBits),
     .CpgCopies    (CpgCopies)
   ) u_cpgs (
     .clk_i       (clk_i),

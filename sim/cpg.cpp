@@ -1,6 +1,7 @@
 #include "sim/cpg.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -138,8 +139,13 @@ ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, c
     const FxVec& na = tri.n[e.a];
     const FxVec& nb = tri.n[e.b];
     const FxVec d = sub(pb, pa);  // exact, W+1 bits
-    const i128 wa_ex = dot_exact(d, na);
-    const i128 wb_ex = dot_exact(d, nb);
+    i128 wa_ex = dot_exact(d, na);
+    i128 wb_ex = dot_exact(d, nb);
+    if (f.takes_alpha()) {  // the silhouette blend: w <- round(alpha w), 2F fraction bits
+      const std::int64_t alpha = alpha_port_value(tri.alpha[static_cast<std::size_t>(e.a)], f.alpha_bits);
+      wa_ex = round_shift(alpha * wa_ex, f.alpha_bits);
+      wb_ex = round_shift(alpha * wb_ex, f.alpha_bits);
+    }
     // A corner's tangent: plain PN when its tags are neutral, else the scalar-tagged rule (its
     // crease rule when both ends are tagged).
     auto tangent = [&](int near, int far, const FxVec& pn, const FxVec& pf, const FxVec& nn, i128 w_ex, int sign) {
@@ -197,7 +203,9 @@ int cpg_edge_cycles(NormalMode mode, const NumberFormat& f, int digit_bits, bool
   const int wait = product_reg ? 1 : 0;  // from a product's issue to its use
   const int first_division = product_reg ? 10 : 7;
   switch (mode) {
-    case NormalMode::Linear: return product_reg ? 9 : 6;
+    // alpha w takes the step after w; with registered products the tangent point near b leaves
+    // a step later (rtl/tess_cpg_edge.sv), without them the steps are reordered at no cost.
+    case NormalMode::Linear: return product_reg ? 9 + (f.takes_alpha() ? 1 : 0) : 6;
     // + D-cycle division (3 slices), m = s - k t
     case NormalMode::Reflect: return first_division + D + 1;
     // + m.m (and its sum), D-cycle square root, D-cycle division (3 slices)
@@ -260,6 +268,28 @@ std::string describe_pattern(const TriangleFx& tri) {
                 fixed16_to_double(tri.factors[0]), fixed16_to_double(tri.factors[1]), fixed16_to_double(tri.factors[2]),
                 fixed16_to_double(tri.factors[3]));
   return buf;
+}
+
+std::uint32_t quantize_alpha(double alpha, int alpha_bits) {
+  if (alpha_bits < 1 || alpha_bits > kMaxAlphaBits) throw std::invalid_argument("alpha bits outside 1..16");
+  const double a = std::clamp(alpha, 0.0, 1.0);  // NaN -> 1: the reference's rule (model/silhouette.hpp)
+  const double steps = std::floor(std::ldexp(std::isnan(alpha) ? 1.0 : a, alpha_bits) + 0.5);
+  return static_cast<std::uint32_t>(steps) << (kAlphaFracBits - alpha_bits);
+}
+
+std::string tri_alpha_problem(const TriangleFx& tri, const NumberFormat& fmt) {
+  if (alpha_in_contract(tri, fmt)) return {};
+  const std::uint32_t low = (std::uint32_t{1} << (kAlphaFracBits - fmt.alpha_bits)) - 1;
+  for (int e = 0; e < 3; ++e) {
+    const std::uint32_t a = tri.alpha[static_cast<std::size_t>(e)];
+    const char* reason = a > kAlphaOne ? "above 1" : (a & low) != 0 ? "not rounded to alpha_bits fraction bits" : nullptr;
+    if (reason) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "alpha of edge %d 0x%x (16 fraction bits) %s", e, static_cast<unsigned>(a), reason);
+      return buf;
+    }
+  }
+  return {};
 }
 
 int patch_vertex_count(const TriangleFx& tri) {

@@ -28,6 +28,23 @@ struct TagsFx {
 // as integer: the host has rounded its factors to powers of two already.
 enum class TriPattern : std::uint8_t { uniform = 0, integer = 1, fractional_odd = 2, fractional_even = 3 };
 
+// The silhouette weight alpha of an edge as the host hands it over (docs/number-formats.md,
+// Silhouette weight): unsigned with kAlphaFracBits fraction bits, 0..1, rounded by the host to
+// the unit's alpha_bits A (its low 16 - A bits zero); the unit's input port carries its top
+// A + 1 bits. 1 (kAlphaOne) is plain PN, 0 the flat triangle.
+inline constexpr int kAlphaFracBits = 16;
+inline constexpr std::uint32_t kAlphaOne = std::uint32_t{1} << kAlphaFracBits;
+inline constexpr int kMaxAlphaBits = kAlphaFracBits;
+// The width `tessim sim --silhouette` gives a unit configured without alpha: the rounding moves a
+// tangent point by at most 2^-9 of its curve's offset (docs/number-formats.md).
+inline constexpr int kDefaultAlphaBits = 8;
+// round(alpha 2^A) / 2^A in the 16-bit transfer format: what the host sends for a float alpha.
+std::uint32_t quantize_alpha(double alpha, int alpha_bits);
+// The port value (A + 1 bits) of a transfer-format alpha.
+inline std::uint32_t alpha_port_value(std::uint32_t alpha, int alpha_bits) {
+  return alpha >> (kAlphaFracBits - alpha_bits);
+}
+
 // One input triangle as it crosses the unit's input stream.
 struct TriangleFx {
   std::array<FxVec, 3> p{};  // P1, P2, P3
@@ -41,6 +58,10 @@ struct TriangleFx {
   // Scalar tags per corner; all neutral for plain PN. They cross the input stream only to a CPG
   // that takes them (cpg_tags; the RTL's CpgTags), which alone reads them.
   std::array<TagsFx, 3> tags{};
+  // Silhouette weight of edge e (corners e -> e + 1), read only by a unit that takes alpha
+  // (NumberFormat::alpha_bits > 0): the CPG blends the edge's tangent points between the flat
+  // triangle (0) and PN (1, the default).
+  std::array<std::uint32_t, 3> alpha{kAlphaOne, kAlphaOne, kAlphaOne};
 };
 
 // The partitioning a D3D11 triangle pattern stands for.
@@ -56,6 +77,16 @@ int patch_vertex_count(const TriangleFx& tri);
 // 1..64, a D3D11 factor outside the partitioning's range or not rounded as it requires, a
 // fractional_odd inner factor of exactly 1 beside a larger outer one (docs/rtl.md, FSU).
 std::string tri_pattern_problem(const TriangleFx& tri);
+// The reason a unit with `fmt`'s alpha_bits cannot take the triangle's alpha, empty if it can:
+// above 1, or not rounded to alpha_bits fraction bits. A unit without alpha ignores it.
+std::string tri_alpha_problem(const TriangleFx& tri, const NumberFormat& fmt);
+inline bool alpha_in_contract(const TriangleFx& tri, const NumberFormat& fmt) {
+  if (!fmt.takes_alpha()) return true;
+  const std::uint32_t low = (std::uint32_t{1} << (kAlphaFracBits - fmt.alpha_bits)) - 1;
+  for (const std::uint32_t a : tri.alpha)
+    if (a > kAlphaOne || (a & low) != 0) return false;
+  return true;
+}
 
 // Contents of one control-point buffer (net layout of model/pn.hpp, net_index()).
 // The normal net is stored at twice its Bernstein value (corners 2 Ni, mid-edges n_ij), which
@@ -76,6 +107,10 @@ bool hardware_supports(NormalMode mode);
 // scalar-tagged control points in fixed point (docs/number-formats.md, Scalar-tagged PN), the
 // formulas of model/pn.hpp make_stpn_patch operation for operation; neutral corners take the
 // plain PN formulas, so all-neutral tags give the plain control points bit for bit.
+// A unit that takes alpha (fmt.alpha_bits > 0) blends each plain-PN tangent point with its
+// edge's alpha: (2 Pn + Pf - round(alpha w) Nn) / 3, the product alpha w rounded to w's 2F
+// fraction bits; alpha = 1 gives the PN point bit for bit. A scalar-tagged corner's tangent
+// point is not blended.
 ControlPointsFx compute_control_points(const TriangleFx& tri, NormalMode mode, const NumberFormat& fmt);
 
 // The shape of the dedicated CPG's datapath (docs/microarchitecture.md §5): only its timing
@@ -95,7 +130,8 @@ int cpg_digit_steps(const NumberFormat& fmt, int digit_bits);
 // excluded (see the doc): the edges in turn (one lane) or at once (three lanes), then the
 // centre point and the write. Registered products (product_reg) add steps to an edge (3 linear,
 // 3 reflect, 4 quadratic) and a cycle to the centre point (rtl/tess_cpg_edge.sv lists both
-// schedules).
+// schedules). A CPG that takes alpha (fmt.alpha_bits > 0) scales each w by alpha in a step of
+// its own, which lengthens only the linear edge with registered products (by one step).
 int cpg_edge_cycles(NormalMode mode, const NumberFormat& fmt, int digit_bits = 1, bool product_reg = false);
 int cpg_cycles(NormalMode mode, const NumberFormat& fmt, const CpgVariant& variant = {});
 // Cycles a CPG that takes scalar tags adds for this triangle (0 when its tags are neutral;

@@ -21,6 +21,9 @@ ErrorBudget position_error_budget(const NumberFormat& f) {
   // Tangent point: exact numerator (relative to the quantized input), a constant round(2^G/3)
   // off by at most 1/2 on a value |num| <= 3R (error 3R/2 2^-G), then one rounding (1/2 LSB).
   b.tangent_lsb = 0.5 + 1.5 * R * const_err;
+  // The silhouette blend rounds alpha w to w's 2F fraction bits: off by 2^-(2F+1), times a
+  // normal component (|Nc| <= 1) over 3, i.e. 2^-(F+1)/3 of an LSB.
+  if (f.takes_alpha()) b.tangent_lsb += std::ldexp(1.0, -(f.coord_frac_bits + 1)) / 3.0;
   // b111 = (3 sum T - 2 sum C) / 12: six tangents weighted 3/12 carry 1.5 tangent errors; the
   // constant round(2^G/12) is off by at most 1/2 on |x| <= 12R (error 6R 2^-G); one rounding.
   b.center_lsb = 1.5 * b.tangent_lsb + 0.5 + 6.0 * R * const_err;

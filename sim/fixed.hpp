@@ -22,12 +22,16 @@ struct NumberFormat {
   int coord_int_bits = 3;    // I: integer bits of a coordinate (excluding sign)
   int coord_frac_bits = 20;  // F: fraction bits of a coordinate
   int bary_bits = 16;        // B: fraction bits of a barycentric weight
+  // A: fraction bits of the silhouette weight alpha the CPG takes per edge (values 0..2^A, so
+  // that 1 is exact); 0: the unit has no alpha input and computes plain PN (docs/number-formats.md).
+  int alpha_bits = 0;
 
   int coord_width() const { return 1 + coord_int_bits + coord_frac_bits; }  // W
   std::int64_t coord_max() const { return (std::int64_t{1} << (coord_width() - 1)) - 1; }
   std::int64_t coord_min() const { return -(std::int64_t{1} << (coord_width() - 1)); }
   std::int64_t bary_one() const { return std::int64_t{1} << bary_bits; }
   double coord_lsb() const { return 1.0 / static_cast<double>(std::int64_t{1} << coord_frac_bits); }
+  bool takes_alpha() const { return alpha_bits > 0; }
   bool operator==(const NumberFormat&) const = default;
 };
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "model/base/error.hpp"
+#include "model/silhouette.hpp"
 
 namespace tessim::sim {
 
@@ -114,6 +115,18 @@ std::optional<TriangleFx> to_fixed(const Mesh& mesh, std::size_t index, const Ho
   if (processed.culled) return std::nullopt;
   TriangleFx tri = to_fixed(mesh, index, scaling, fmt, 1, with_tags);
   set_d3d11_pattern(tri, processed, settings.partitioning);
+  return tri;
+}
+
+void set_silhouette_alpha(TriangleFx& tri, const MeshSilhouette& silhouette, std::size_t index,
+                          const NumberFormat& fmt) {
+  if (!fmt.takes_alpha()) return;
+  const std::array<double, 3>& alpha = silhouette.alpha(index);
+  for (std::size_t e = 0; e < 3; ++e) tri.alpha[e] = quantize_alpha(alpha[e], fmt.alpha_bits);
+}
+
+TriangleFx with_alpha(TriangleFx tri, const MeshPatterns& patterns, std::size_t index, const NumberFormat& fmt) {
+  if (patterns.silhouette) set_silhouette_alpha(tri, *patterns.silhouette, index, fmt);
   return tri;
 }
 

@@ -75,6 +75,9 @@ std::optional<TriangleFx> to_fixed(const Mesh& mesh, std::size_t index, const Ho
 struct MeshPatterns {
   std::span<const std::uint8_t> factors;  // uniform: one per triangle of the mesh, or empty
   const TessSettings* d3d11 = nullptr;    // D3D11 settings (kept by reference), or none
+  // The silhouette weights alpha the host sends with each triangle (tessim sim --silhouette), or
+  // none (every alpha 1). Only a unit that takes alpha (alpha_bits > 0) reads them.
+  const MeshSilhouette* silhouette = nullptr;
 
   MeshPatterns() = default;
   MeshPatterns(std::span<const std::uint8_t> f) : factors(f) {}
@@ -82,6 +85,13 @@ struct MeshPatterns {
   MeshPatterns(const TessSettings* s) : d3d11(s && s->kind == PatternKind::D3D11 ? s : nullptr) {}
   bool per_patch() const { return d3d11 || !factors.empty(); }
 };
+
+// Gives the triangle (mesh triangle `index`) the silhouette weights of `silhouette`, rounded to
+// the unit's alpha_bits (quantize_alpha); nothing for a unit without alpha.
+void set_silhouette_alpha(TriangleFx& tri, const MeshSilhouette& silhouette, std::size_t index,
+                          const NumberFormat& fmt);
+// `tri` with the alpha of `patterns` (set_silhouette_alpha) when it has a silhouette.
+TriangleFx with_alpha(TriangleFx tri, const MeshPatterns& patterns, std::size_t index, const NumberFormat& fmt);
 
 // Output vertex data back in the mesh's coordinates. The normal is normalized; a vanished
 // normal (all components zero) is returned as the zero vector and reported by the caller.

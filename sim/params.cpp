@@ -34,7 +34,7 @@ constexpr auto E = ParamKind::Environment;
 constexpr auto W = ParamKind::Workload;
 constexpr auto I = ParamType::Int;
 
-const std::array<ParamSpec, 21> kParams{{
+const std::array<ParamSpec, 22> kParams{{
     {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
      "tessellation factor: segments per edge, the same for every triangle of a run",
      TESSIM_PARAM_FIELD(tess_factor)},
@@ -91,6 +91,10 @@ const std::array<ParamSpec, 21> kParams{{
     // B >= 7 keeps every barycentric weight of L <= 64 away from rounding ties (fixed.hpp).
     {"bary_bits", "--bary-bits", "", "BaryBits", "B", H, I, 7, kMaxBaryBits, {}, "bits",
      "fraction bits of a barycentric weight (weights are B + 1 bits)", TESSIM_PARAM_FIELD(format.bary_bits)},
+    {"alpha_bits", "--alpha-bits", "", "AlphaBits", "A", H, I, 0, kMaxAlphaBits, {}, "bits",
+     "fraction bits of the silhouette weight alpha the CPG takes per edge and blends its tangent points "
+     "with (one multiplication each); 0: no alpha input, plain PN",
+     TESSIM_PARAM_FIELD(format.alpha_bits)},
     {"tri_fifo_depth", "--tri-fifo-depth", "", "TriFifoDepth", "Dt", H, I, 1, 64, {}, "triangles",
      "depth of the input triangle FIFO in front of the CPG", TESSIM_PARAM_FIELD(tri_fifo_depth)},
     {"vtx_fifo_depth", "--vtx-fifo-depth", "", "VtxFifoDepth", "Dv", H, I, 1, 64, {}, "vertices",

@@ -25,34 +25,37 @@ constexpr auto Vtx = PortItem::Vertex;
 constexpr auto None = PortItem::None;
 
 // The data and control ports, in declaration order; the perf_*_o outputs follow them.
-constexpr std::array<Port, 25> kIoPorts{{
-    {"clk_i", In, bits(1), None, false, "clock"},
-    {"rst_ni", In, bits(1), None, false, "asynchronous reset, active low"},
-    {"mode_i", In, bits(pkg::kModeBits), None, false, "normal mode (codes), static during a run"},
-    {"tri_valid_i", In, bits(1), None, false, "a triangle is offered"},
-    {"tri_ready_o", Out, bits(1), None, false, "the TRI FIFO takes it"},
-    {"tri_p_i", In, per_w(9), Tri, false, "positions P1..P3: vertex v component c at [(3v+c)W +: W]"},
-    {"tri_n_i", In, per_w(9), Tri, false, "normals N1..N3, laid out as tri_p_i"},
-    {"tri_l_i", In, bits(pkg::kFactorBits), Tri, false, "uniform pattern: L in 1..64"},
-    {"tri_pattern_i", In, bits(pkg::kPatternBits), Tri, false, "pattern (codes)"},
-    {"tri_factors_i", In, bits(4 * pkg::kFixBits), Tri, false,
+constexpr std::array<Port, 26> kIoPorts{{
+    {"clk_i", In, bits(1), None, 0, "clock"},
+    {"rst_ni", In, bits(1), None, 0, "asynchronous reset, active low"},
+    {"mode_i", In, bits(pkg::kModeBits), None, 0, "normal mode (codes), static during a run"},
+    {"tri_valid_i", In, bits(1), None, 0, "a triangle is offered"},
+    {"tri_ready_o", Out, bits(1), None, 0, "the TRI FIFO takes it"},
+    {"tri_p_i", In, per_w(9), Tri, 0, "positions P1..P3: vertex v component c at [(3v+c)W +: W]"},
+    {"tri_n_i", In, per_w(9), Tri, 0, "normals N1..N3, laid out as tri_p_i"},
+    {"tri_l_i", In, bits(pkg::kFactorBits), Tri, 0, "uniform pattern: L in 1..64"},
+    {"tri_pattern_i", In, bits(pkg::kPatternBits), Tri, 0, "pattern (codes)"},
+    {"tri_factors_i", In, bits(4 * pkg::kFixBits), Tri, 0,
      "D3D11: factor e at [e*FixBits +: FixBits] (3 = inner), unsigned 16.16"},
-    {"tri_id_i", In, bits(pkg::kIdBits), Tri, false, "patch id, passed to every vertex"},
-    {"tri_tags_i", In, per_w(18), Tri, true,
+    {"tri_id_i", In, bits(pkg::kIdBits), Tri, 0, "patch id, passed to every vertex"},
+    {"tri_tags_i", In, per_w(18), Tri, kVarCpgTags,
      "scalar tags, read only with cpg_tags 1: vertex v's crease vector (3W), sigma, theta, beta at [6vW +: 6W]"},
-    {"vtx_valid_o", Out, bits(1), None, false, "a vertex is offered"},
-    {"vtx_ready_i", In, bits(1), None, false, "the geometry engine takes it"},
-    {"vtx_pos_o", Out, per_w(3), Vtx, false, "position: component c at [cW +: W]"},
-    {"vtx_nrm_o", Out, per_w(3), Vtx, false, "unnormalized normal, laid out as vtx_pos_o"},
-    {"vtx_u_o", Out, weight, Vtx, false, "barycentric weight u, B fraction bits"},
-    {"vtx_v_o", Out, weight, Vtx, false, "barycentric weight v"},
-    {"vtx_j_o", Out, bits(pkg::kFactorBits), Vtx, false, "uniform: lattice index j; D3D11: ring"},
-    {"vtx_k_o", Out, bits(pkg::kFactorBits), Vtx, false, "uniform: lattice index k; D3D11: edge"},
-    {"vtx_l_o", Out, bits(pkg::kFactorBits), Vtx, false, "uniform: L; D3D11: 0"},
-    {"vtx_index_o", Out, bits(pkg::kIndexBits), Vtx, false, "position in the patch's pattern order"},
-    {"vtx_id_o", Out, bits(pkg::kIdBits), Vtx, false, "patch id"},
-    {"vtx_last_o", Out, bits(1), Vtx, false, "last vertex of its patch"},
-    {"vtx_flags_o", Out, bits(pkg::kFlagBits), Vtx, false, "flag bits of the patch's control points (codes)"},
+    {"tri_alpha_i", In, {{{3, kVarAlphaBits}, {3, 0}}}, Tri, kVarTakesAlpha,
+     "silhouette weights, read only with alpha_bits > 0: edge e's (corners e -> e+1) alpha at "
+     "[e(alpha_bits+1) +: alpha_bits+1], alpha_bits fraction bits, 0..2^alpha_bits"},
+    {"vtx_valid_o", Out, bits(1), None, 0, "a vertex is offered"},
+    {"vtx_ready_i", In, bits(1), None, 0, "the geometry engine takes it"},
+    {"vtx_pos_o", Out, per_w(3), Vtx, 0, "position: component c at [cW +: W]"},
+    {"vtx_nrm_o", Out, per_w(3), Vtx, 0, "unnormalized normal, laid out as vtx_pos_o"},
+    {"vtx_u_o", Out, weight, Vtx, 0, "barycentric weight u, B fraction bits"},
+    {"vtx_v_o", Out, weight, Vtx, 0, "barycentric weight v"},
+    {"vtx_j_o", Out, bits(pkg::kFactorBits), Vtx, 0, "uniform: lattice index j; D3D11: ring"},
+    {"vtx_k_o", Out, bits(pkg::kFactorBits), Vtx, 0, "uniform: lattice index k; D3D11: edge"},
+    {"vtx_l_o", Out, bits(pkg::kFactorBits), Vtx, 0, "uniform: L; D3D11: 0"},
+    {"vtx_index_o", Out, bits(pkg::kIndexBits), Vtx, 0, "position in the patch's pattern order"},
+    {"vtx_id_o", Out, bits(pkg::kIdBits), Vtx, 0, "patch id"},
+    {"vtx_last_o", Out, bits(1), Vtx, 0, "last vertex of its patch"},
+    {"vtx_flags_o", Out, bits(pkg::kFlagBits), Vtx, 0, "flag bits of the patch's control points (codes)"},
 }};
 
 // The counter outputs: the registry's rows with a port, in its order (the RTL declares them in
@@ -68,9 +71,9 @@ static_assert(row_count(CounterBlock::Int) == 2 && kCounterRegistry[first_row(Co
 
 constexpr Port perf_port(const CounterRow& r, bool first) {
   if (r.block == CounterBlock::Int)
-    return {r.port.data(), Out, {{{pkg::kCounterBits, kVarIntBlocks}}}, None, false,
+    return {r.port.data(), Out, {{{pkg::kCounterBits, kVarIntBlocks}}}, None, 0,
             "busy cycles of INT block i at [64i +: 64]"};
-  return {r.port.data(), Out, counter, None, false, first ? "counter (docs/statistics.md)" : "counter"};
+  return {r.port.data(), Out, counter, None, 0, first ? "counter (docs/statistics.md)" : "counter"};
 }
 
 constexpr auto kPorts = [] {
@@ -82,8 +85,12 @@ constexpr auto kPorts = [] {
   return a;
 }();
 
-constexpr std::array<std::pair<WidthVar, const char*>, 4> kVarNames{{
-    {kVarW, "W"}, {kVarBaryBits, "bary_bits"}, {kVarIntBlocks, "int_blocks"}, {kVarCpgTags, "cpg_tags"}}};
+constexpr std::array<std::pair<WidthVar, const char*>, 6> kVarNames{{{kVarW, "W"},
+                                                                     {kVarBaryBits, "bary_bits"},
+                                                                     {kVarIntBlocks, "int_blocks"},
+                                                                     {kVarCpgTags, "cpg_tags"},
+                                                                     {kVarAlphaBits, "alpha_bits"},
+                                                                     {kVarTakesAlpha, "takes_alpha"}}};
 
 int var_value(WidthVar v, const HardwareConfig& hw) {
   switch (v) {
@@ -91,6 +98,8 @@ int var_value(WidthVar v, const HardwareConfig& hw) {
     case kVarBaryBits: return hw.format.bary_bits;
     case kVarIntBlocks: return hw.int_blocks;
     case kVarCpgTags: return hw.cpg_tags;
+    case kVarAlphaBits: return hw.format.alpha_bits;
+    case kVarTakesAlpha: return hw.format.takes_alpha() ? 1 : 0;
   }
   return 0;
 }
@@ -168,13 +177,14 @@ int width_bits(const Width& w, const HardwareConfig& hw) {
 std::string width_text(const Width& w) { return terms_text(used_terms(w)); }
 
 // Terms with equal variables merged, in order of first appearance; a tags-only port's terms
-// are multiplied by cpg_tags.
+// are multiplied by the variable it is only with (cpg_tags, takes_alpha).
 std::vector<WidthTerm> item_terms(PortItem item) {
   std::vector<WidthTerm> terms;
   for (const Port& p : kPorts) {
     if (p.item != item) continue;
     for (WidthTerm t : used_terms(p.width)) {
-      if (p.tags_only) t.vars |= kVarCpgTags;
+      t.vars |= p.only_with;
+      if ((t.vars & kVarAlphaBits) && (t.vars & kVarTakesAlpha)) t.vars &= ~kVarTakesAlpha;  // A > 0 already
       bool merged = false;
       for (WidthTerm& have : terms) {
         if (have.vars == t.vars) {
@@ -221,7 +231,8 @@ json interface_json() {
               {"bits_at_defaults", width_bits(p.width, defaults)},
               {"what", p.what}};
     if (p.item != PortItem::None) e["item"] = to_string(p.item);
-    if (p.tags_only) e["item_only_with"] = "cpg_tags";
+    for (const auto& [v, name] : kVarNames)
+      if (p.only_with == v) e["item_only_with"] = name;
     ports.push_back(e);
   }
   json items = json::object();
@@ -250,7 +261,9 @@ json interface_json() {
       {"variables", {{"W", "1 + coord_int_bits + coord_frac_bits"},
                      {"bary_bits", "B"},
                      {"int_blocks", "N"},
-                     {"cpg_tags", "0 or 1"}}},
+                     {"cpg_tags", "0 or 1"},
+                     {"alpha_bits", "A"},
+                     {"takes_alpha", "1 when alpha_bits > 0, else 0"}}},
       {"ports", ports},
       {"items", items},
       {"package_widths", widths},

@@ -50,9 +50,11 @@ inline constexpr std::array<Constant, 9> kWidths{{
 }  // namespace pkg
 
 // A width is a sum of terms coef * (product of the variables in `vars`); no variable: a
-// constant. Variables: W = 1 + coord_int_bits + coord_frac_bits, and the configuration keys
-// bary_bits, int_blocks, cpg_tags.
-enum WidthVar : std::uint8_t { kVarW = 1, kVarBaryBits = 2, kVarIntBlocks = 4, kVarCpgTags = 8 };
+// constant. Variables: W = 1 + coord_int_bits + coord_frac_bits, the configuration keys
+// bary_bits, int_blocks, cpg_tags, alpha_bits, and takes_alpha (1 when alpha_bits > 0).
+enum WidthVar : std::uint8_t {
+  kVarW = 1, kVarBaryBits = 2, kVarIntBlocks = 4, kVarCpgTags = 8, kVarAlphaBits = 16, kVarTakesAlpha = 32
+};
 struct WidthTerm {
   int coef = 0;  // 0: unused slot
   std::uint8_t vars = 0;
@@ -70,7 +72,9 @@ struct Port {
   PortDir dir;
   Width width;
   PortItem item;
-  bool tags_only;  // part of the item only in builds with cpg_tags 1 (the port exists in every build)
+  // 0, or the variable (kVarCpgTags, kVarTakesAlpha) without which the port is not part of the
+  // item (it exists in every build, unread).
+  std::uint8_t only_with;
   const char* what;
 };
 
@@ -80,7 +84,7 @@ const Port* find_port(const std::string& name);  // nullptr if unknown
 
 // Width evaluated for a configuration.
 int width_bits(const Width& w, const HardwareConfig& hw);
-// "9*W", "bary_bits + 1", "18*W*cpg_tags + 18*W + 133".
+// "9*W", "bary_bits + 1", "18*W*cpg_tags + 3*alpha_bits + 3*takes_alpha + 18*W + 133".
 std::string width_text(const Width& w);
 
 // Bits of one item: the ports that carry it (the TRI FIFO's and the VTX FIFO's entry width,

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "model/silhouette.hpp"
+
 namespace tessim::sim {
 
 void ErrorAccumulator::add_position(double relative_error) {
@@ -85,9 +87,11 @@ ArithmeticCheck ArithmeticCheck::for_mesh(const Mesh& mesh, const HostScaling& s
   return ArithmeticCheck(
       [&mesh, scaling, cfg, patterns](std::uint32_t id) {
         // Only patches that produced vertices are looked up: never a culled one.
-        if (patterns.d3d11) return *to_fixed(mesh, id, scaling, cfg.format, *patterns.d3d11, cfg.cpg_tags);
-        return to_fixed(mesh, id, scaling, cfg.format,
-                        patterns.factors.empty() ? cfg.tess_factor : patterns.factors[id], cfg.cpg_tags);
+        if (patterns.d3d11)
+          return with_alpha(*to_fixed(mesh, id, scaling, cfg.format, *patterns.d3d11, cfg.cpg_tags), patterns, id, cfg.format);
+        return with_alpha(to_fixed(mesh, id, scaling, cfg.format,
+                                   patterns.factors.empty() ? cfg.tess_factor : patterns.factors[id], cfg.cpg_tags),
+                          patterns, id, cfg.format);
       },
       diagonal, cfg);
 }
@@ -108,6 +112,16 @@ bool ArithmeticCheck::check(const VertexFx& v) {
                    std::ldexp(double(tri.tags[c].theta), -cfg_.format.coord_frac_bits),
                    std::ldexp(double(tri.tags[c].beta), -cfg_.format.coord_frac_bits)};
       patch_ = make_stpn_patch(dequantized_input(tri, cfg_.format), tags, cfg_.normals);
+    } else if (cfg_.format.takes_alpha()) {
+      // The blend with the alpha the unit received (the host's rounding of the float alpha is
+      // the interface's, docs/number-formats.md; the bound covers the unit's arithmetic).
+      const PnInput in = dequantized_input(tri, cfg_.format);
+      PatchSilhouette s;
+      for (std::size_t e = 0; e < 3; ++e) {
+        s.alpha[e] = std::ldexp(static_cast<double>(tri.alpha[e]), -kAlphaFracBits);
+        s.normals[e] = in.n[e];
+      }
+      patch_ = make_silhouette_patch(in, s, cfg_.normals);
     } else {
       patch_ = make_patch(dequantized_input(tri, cfg_.format), cfg_.normals);
     }
@@ -154,9 +168,9 @@ ArithmeticErrors ArithmeticCheck::result() const {
 }
 
 MeshErrors::MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged,
-                       const TessSettings* d3d11)
+                       const TessSettings* d3d11, const MeshSilhouette* silhouette)
     : mesh_(mesh), scaling_(scaling), cfg_(cfg), scalar_tagged_(scalar_tagged && mesh.has_tags()),
-      diagonal_(bounding_box(mesh).diagonal()) {
+      silhouette_(cfg.format.takes_alpha() ? silhouette : nullptr), diagonal_(bounding_box(mesh).diagonal()) {
   if (!(diagonal_ > 0)) diagonal_ = 1.0;  // a single point: absolute errors
   if (d3d11 && d3d11->kind == PatternKind::D3D11) d3d11_.emplace(*d3d11);
 }
@@ -171,7 +185,14 @@ VertexErrors MeshErrors::add(const VertexFx& v) {
       in.n[c] = mesh_.normals[tri[c]];
       if (scalar_tagged_) tags[c] = mesh_.tags[tri[c]];
     }
-    patch_ = scalar_tagged_ ? make_stpn_patch(in, tags, cfg_.normals) : make_patch(in, cfg_.normals);
+    if (silhouette_) {  // the float alpha: the host's rounding of it is part of the measured error
+      PatchSilhouette s;
+      s.alpha = silhouette_->alpha(v.id);
+      s.normals = in.n;
+      patch_ = make_silhouette_patch(in, s, cfg_.normals);
+    } else {
+      patch_ = scalar_tagged_ ? make_stpn_patch(in, tags, cfg_.normals) : make_patch(in, cfg_.normals);
+    }
     patch_id_ = v.id;
     // A copy: the cache may drop its patterns when it grows.
     if (v.L == 0 && d3d11_) patch_points_ = d3d11_->pattern(mesh_, v.id).points;

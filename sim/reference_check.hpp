@@ -106,8 +106,10 @@ class MeshErrors {
   // `scalar_tagged`: the reference of a tagged mesh is its scalar-tagged surface (the output
   // came from the fixed-point scalar-tagged arithmetic); otherwise plain PN whatever the tags.
   // `d3d11`: the D3D11 settings the unit ran with (kept by reference), needed for D3D11 vertices.
+  // `silhouette`: the alpha the host rounded for a unit that takes it (the reference is then the
+  // blend with the float alpha), or none.
   MeshErrors(const Mesh& mesh, const HostScaling& scaling, const UnitConfig& cfg, bool scalar_tagged = false,
-             const TessSettings* d3d11 = nullptr);
+             const TessSettings* d3d11 = nullptr, const MeshSilhouette* silhouette = nullptr);
   // Measures the vertex, adds it to the statistics and returns its own errors (the heat maps
   // of `tessim render --color error-position|error-normal`). Throws std::logic_error for a
   // D3D11 vertex that is not its index's point of the reference pattern.
@@ -119,6 +121,7 @@ class MeshErrors {
   HostScaling scaling_;
   UnitConfig cfg_;
   bool scalar_tagged_ = false;
+  const MeshSilhouette* silhouette_ = nullptr;
   double diagonal_ = 1.0;
   std::optional<std::uint32_t> patch_id_;
   PnPatch patch_;

@@ -54,7 +54,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   std::optional<MeshErrors> mesh_errors;
   std::optional<ArithmeticCheck> arithmetic;
   if (hooks.measure_errors) {
-    mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags, patterns.d3d11);
+    mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags, patterns.d3d11, patterns.silhouette);
     arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, patterns));
   }
   LateIntervals late;

@@ -61,8 +61,12 @@ class MeshSource {
   std::size_t end() const { return end_; }
   // Triangle t as the unit receives it; std::nullopt when its factors cull it.
   std::optional<TriangleFx> triangle(std::size_t t) const {
-    if (patterns_.d3d11) return to_fixed(mesh_, t, scaling_, format_, *patterns_.d3d11, with_tags_);
-    return to_fixed(mesh_, t, scaling_, format_, factor(t), with_tags_);
+    if (patterns_.d3d11) {
+      std::optional<TriangleFx> tri = to_fixed(mesh_, t, scaling_, format_, *patterns_.d3d11, with_tags_);
+      if (tri) *tri = with_alpha(*tri, patterns_, t, format_);
+      return tri;
+    }
+    return with_alpha(to_fixed(mesh_, t, scaling_, format_, factor(t), with_tags_), patterns_, t, format_);
   }
   // Points of triangle t's pattern (0: culled), from its factors alone.
   int patch_points(std::size_t t) const {

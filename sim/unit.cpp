@@ -13,13 +13,16 @@ namespace tessim::sim {
 
 namespace {
 
-// The input stream carries L in 7 bits, 1..64, and D3D11 factors in their partitioning's range
-// (sim/cpg.hpp, tri_pattern_problem); anything else is a caller bug.
-[[noreturn, gnu::cold, gnu::noinline]] void throw_bad_factor(const TriangleFx& tri, int bary_bits) {
+// The input stream carries L in 7 bits, 1..64, D3D11 factors in their partitioning's range and
+// alpha rounded to alpha_bits (sim/cpg.hpp, tri_pattern_problem, tri_alpha_problem); anything
+// else is a caller bug.
+[[noreturn, gnu::cold, gnu::noinline]] void throw_bad_factor(const TriangleFx& tri, const NumberFormat& fmt) {
+  const int bary_bits = fmt.bary_bits;
   std::string msg = "Unit: triangle ";
   msg += std::to_string(tri.id);
   msg += ": ";
-  const std::string problem = tri_pattern_problem(tri);
+  std::string problem = tri_alpha_problem(tri, fmt);
+  if (problem.empty()) problem = tri_pattern_problem(tri);
   msg += problem.empty() ? "a D3D11 pattern needs bary_bits >= 16 (its points are 16.16), not " + std::to_string(bary_bits)
                          : problem;
   throw std::invalid_argument(msg);
@@ -70,9 +73,10 @@ bool Unit::idle() const {
 void Unit::tick(const UnitInputs& in) {
   // ---- Every decision of the cycle, from the registered state and the inputs.
   const bool tri_push = in.tri_valid && !tri_fifo_.full();
-  if (tri_push && (in.tri.pattern == TriPattern::uniform ? in.tri.L < 1 || in.tri.L > kMaxTessFactor
-                                                          : hw_.format.bary_bits < 16 || !tri_pattern_problem(in.tri).empty()))
-    throw_bad_factor(in.tri, hw_.format.bary_bits);
+  if (tri_push && ((in.tri.pattern == TriPattern::uniform ? in.tri.L < 1 || in.tri.L > kMaxTessFactor
+                                                           : hw_.format.bary_bits < 16 || !tri_pattern_problem(in.tri).empty()) ||
+                   !alpha_in_contract(in.tri, hw_.format)))
+    throw_bad_factor(in.tri, hw_.format);
   const bool vtx_pop = in.vtx_ready && !vtx_fifo_.empty();
   const bool head_done = te_.head_done();
   const bool retire = head_done && !vtx_fifo_.full();

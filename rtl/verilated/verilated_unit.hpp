@@ -226,6 +226,11 @@ class VerilatedUnit final : public RtlUnit {
       detail::put_bits(model_->tri_tags_i, (6 * v + 4) * w, w, static_cast<std::uint64_t>(t.theta));
       detail::put_bits(model_->tri_tags_i, (6 * v + 5) * w, w, static_cast<std::uint64_t>(t.beta));
     }
+    // Silhouette weights (read by AlphaBits builds only): edge e's alpha at [e(A + 1) +: A + 1].
+    if (const int a = format().alpha_bits; a > 0) {
+      for (int e = 0; e < 3; ++e)
+        detail::put_bits(model_->tri_alpha_i, e * (a + 1), a + 1, sim::alpha_port_value(in.tri.alpha[e], a));
+    }
     model_->tri_l_i = static_cast<CData>(in.tri.L & 0x7f);
     model_->tri_pattern_i = static_cast<CData>(static_cast<unsigned>(in.tri.pattern) & 3);
     for (int e = 0; e < 4; ++e)

@@ -195,6 +195,7 @@ TEST(CosimLatency3, AgreesInEveryModeAndUnderBackpressure) {
         o.unit.te_contexts = 6;
         o.unit.cpg = {3, 5, 2, 1};
         o.unit.cpg_tags = 1;
+        o.unit.format.alpha_bits = 8;
         o.unit.normals = mode;
         const auto stream = random_triangles(24, o.seed, o.unit.format, 6, 0.1, 1.0, tagged);
         const CosimReport r = run_cosim(stream, o);
@@ -252,6 +253,7 @@ TEST(CosimWave, ExplicitWindowOfAPassingRunWithAMatchingLayout) {
     o.unit.te_contexts = b.contexts;
     o.unit.cpg = b.cpg;
     o.unit.cpg_tags = b.n == 3 ? 1 : 0;
+    o.unit.format.alpha_bits = b.n == 3 ? 8 : 0;
     const auto stream = random_triangles(6, 7, o.unit.format, 3);
     for (const char* ext : {".fst", ".vcd"}) {
       o.wave = dir.path() / (std::string(b.name) + ext);
@@ -291,8 +293,10 @@ TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
     const char* name;
     int n;
     sim::CpgVariant cpg;
+    int alpha_bits;
   };
-  for (const Build b : {Build{"n1_r4", 1, {1, 4, 3}}, Build{"n2_l3r8", 2, {3, 8, 2, 1}}, Build{"n4_l3r24", 4, {3, 24, 5, 1}}}) {
+  for (const Build b : {Build{"n1_r4", 1, {1, 4, 3}, 1}, Build{"n2_l3r8", 2, {3, 8, 2, 1}, 8},
+                        Build{"n4_l3r24", 4, {3, 24, 5, 1}, 16}}) {
     for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
       for (const Backpressure bp : {Backpressure{"none", 0.0, 1}, Backpressure{"random", 0.3, 2}}) {
         for (const bool tagged : {false, true}) {
@@ -300,6 +304,7 @@ TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
           o.variant = b.name;
           o.unit.cpg = b.cpg;
           o.unit.cpg_tags = 1;
+          o.unit.format.alpha_bits = b.alpha_bits;
           o.unit.normals = mode;
           const auto stream = random_triangles(24, o.seed, o.unit.format, 6, 0.1, 1.0, tagged);
           const CosimReport r = run_cosim(stream, o);
@@ -317,6 +322,7 @@ TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
         o.variant = b.name;
         o.unit.cpg = b.cpg;
         o.unit.cpg_tags = 1;
+        o.unit.format.alpha_bits = b.alpha_bits;
         o.unit.normals = mode;
         const CosimReport r = run_cosim(random_triangles(60, o.seed, o.unit.format, 3, 0.1, 30.0, tagged), o);
         expect_pass(r, o);

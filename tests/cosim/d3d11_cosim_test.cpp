@@ -86,13 +86,15 @@ TEST(RandomD3D11Cosim, TagTakingBuildsWithD3D11Patterns) {
     const char* name;
     int n, latency, contexts;
     sim::CpgVariant cpg;
+    int alpha_bits;
   };
-  for (const Build& b : {Build{"n1_r4", 1, 1, 4, {1, 4, 3}}, Build{"n3_lat3", 3, 3, 6, {3, 5, 2, 1}}}) {
+  for (const Build& b : {Build{"n1_r4", 1, 1, 4, {1, 4, 3}, 1}, Build{"n3_lat3", 3, 3, 6, {3, 5, 2, 1}, 8}}) {
     CosimOptions o = options(b.name, b.n, NormalMode::Quadratic, 0.2, 21);
     o.unit.int_latency = b.latency;
     o.unit.te_contexts = b.contexts;
     o.unit.cpg = b.cpg;
     o.unit.cpg_tags = 1;
+    o.unit.format.alpha_bits = b.alpha_bits;
     std::vector<sim::TriangleFx> stream = random_triangles(40, 21, o.unit.format, 6, 0.1, 1.0, true);
     assign_random_patterns(stream, 21, 16);
     const CosimReport r = run_cosim(stream, o);

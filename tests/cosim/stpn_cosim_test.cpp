@@ -19,11 +19,12 @@ struct TagBuild {
   const char* name;
   int n, latency, contexts;
   sim::CpgVariant cpg;
+  int alpha_bits;  // these builds also take alpha (unread here: every alpha is 1)
 };
-constexpr TagBuild kTagBuilds[] = {{"n1_r4", 1, 1, 4, {1, 4, 3}},
-                                   {"n2_l3r8", 2, 1, 4, {3, 8, 2, 1}},
-                                   {"n3_lat3", 3, 3, 6, {3, 5, 2, 1}},
-                                   {"n4_l3r24", 4, 1, 4, {3, 24, 5, 1}}};
+constexpr TagBuild kTagBuilds[] = {{"n1_r4", 1, 1, 4, {1, 4, 3}, 1},
+                                   {"n2_l3r8", 2, 1, 4, {3, 8, 2, 1}, 8},
+                                   {"n3_lat3", 3, 3, 6, {3, 5, 2, 1}, 8},
+                                   {"n4_l3r24", 4, 1, 4, {3, 24, 5, 1}, 16}};
 
 CosimOptions tag_options(const TagBuild& b, NormalMode mode, double stall, std::uint64_t seed) {
   CosimOptions o;
@@ -33,6 +34,7 @@ CosimOptions tag_options(const TagBuild& b, NormalMode mode, double stall, std::
   o.unit.te_contexts = b.contexts;
   o.unit.cpg = b.cpg;
   o.unit.cpg_tags = 1;
+  o.unit.format.alpha_bits = b.alpha_bits;
   o.unit.normals = mode;
   o.unit.gpe_stall_prob = stall;
   o.unit.gpe_cycles = 2;

@@ -225,7 +225,7 @@ void expect_counters_consistent(const RunResult& r, const rtl::RtlUnit& unit, st
   EXPECT_GE(k.int_busy[unit.int_blocks() - 1], k.te[TeClass::IntLimited]) << what;
   // Each triangle keeps one CPG copy busy for C + 1 cycles; at most Mc copies are busy in a cycle.
   EXPECT_GE(k.cpg[sim::CpgClass::Busy],
-            triangles * static_cast<std::uint64_t>(sim::cpg_cycles(mode, kFormat, unit.config().cpg) + 1) /
+            triangles * static_cast<std::uint64_t>(sim::cpg_cycles(mode, unit.config().format, unit.config().cpg) + 1) /
                 static_cast<std::uint64_t>(unit.config().cpg.copies))
       << what;
 }
@@ -402,7 +402,7 @@ TEST(RtlSmoke, FirstVertexTimingShowsTheCpgCycleCount) {
     for (NormalMode mode : kModes) {
       const RunResult r = run_stream(*unit, mode, {tri}, 1, always);
       ASSERT_EQ(r.vertices.size(), 1u);
-      const int C = sim::cpg_cycles(mode, kFormat, unit->config().cpg);
+      const int C = sim::cpg_cycles(mode, unit->config().format, unit->config().cpg);
       const int S = lone_vertex_issue_cycles(unit->int_blocks(), mode == NormalMode::Linear);
       EXPECT_EQ(r.vertices[0].cycle, static_cast<std::uint64_t>(C + 4 + S))
           << name << " " << to_string(mode) << " C = " << C << " S = " << S;
