@@ -130,6 +130,12 @@ def mesh_fixtures() -> dict[str, bytes]:
     # Scalar tags out of range or breaking the format's rules
     base = ["0 0 0", "1 0 0", "0 1 0"]
     tag = lambda xyz, t: f"{xyz} {t}"  # noqa: E731
+    # A crease through vertex 0 between the two faces of edge 0-1: with --silhouette a feature end,
+    # which the unit's CPG does not blend (tessim sim refuses it, naming vertex 0).
+    m["silhouette_feature_end.ply"] = ply_ascii(
+        ["x", "y", "z", "dx", "dy", "dz", "sigma", "theta", "beta"],
+        ["0 0 0 0 -1 1 1 0 0", "1 0 0 0 0 0 0 0 0", "0.5 1 0 0 0 0 0 0 0", "0.5 -0.5 1 0 0 0 0 0 0"],
+        ["3 0 1 2", "3 1 0 3"]).encode()
     m["tag_beta.ply"] = tagged_ply([tag(base[0], "0 0 1 1 0 2"), tag(base[1], "0 0 0 0 0 0"), tag(base[2], "0 0 0 0 0 0")]).encode()
     m["tag_negative_sigma.ply"] = tagged_ply([tag(base[0], "0 0 1 -1 0 0"), tag(base[1], "0 0 0 0 0 0"), tag(base[2], "0 0 0 0 0 0")]).encode()
     m["tag_theta.ply"] = tagged_ply([tag(base[0], "0 0 0 0 7 0"), tag(base[1], "0 0 0 0 0 0"), tag(base[2], "0 0 0 0 0 0")]).encode()
@@ -309,13 +315,18 @@ def factor_cases(mesh: str) -> list[Case]:
         cases.append(Case("factors", cmd + ["--viewport", "640x480"]))
         cases.append(Case("factors", cmd + ["--pixels-per-segment", "8"]))
         cases.append(Case("factors", cmd + ["--partitioning", "integer", "--outer", "0,0,0"]))
-    # Silhouettes: the reference commands refuse bad eyes and widths; the unit has no silhouette rule.
+    # Silhouettes: every command that takes --silhouette refuses bad eyes and widths.
     for cmd in (["tessellate", mesh, "-o", "{work}/o.ply"], ["render", mesh, "-o", "{work}/o.png"],
-                ["info", mesh]):
+                ["info", mesh], ["sim", mesh, "-o", "{work}/o.ply"], ["cosim", mesh, "--int-blocks", "2"]):
         for text in SILHOUETTE_TEXTS:
             cases.append(Case("silhouette", cmd + ["--silhouette", text]))
-    for cmd in (["sim", mesh, "-o", "{work}/o.ply"], ["cosim", mesh, "--int-blocks", "2"]):
-        cases.append(Case("silhouette", cmd + ["--adaptive", "silhouette", "--camera", "eye=0,0,5"]))
+    # The unit blends smooth edge ends only: a feature end is refused, naming its vertex; the blend
+    # needs a build that takes alpha, and a mesh (--random draws alpha itself).
+    for cmd in (["sim", "{data}/silhouette_feature_end.ply", "-o", "{work}/o.ply"],
+                ["sim", "{data}/silhouette_feature_end.ply", "-o", "{work}/o.ply", "--alpha-bits", "4"]):
+        cases.append(Case("silhouette", cmd + ["--silhouette", "eye=0,0,5"]))
+    cases.append(Case("silhouette", ["cosim", mesh, "--int-blocks", "2", "--silhouette", "eye=0,0,5"]))
+    cases.append(Case("silhouette", ["cosim", "--random", "4", "--variant", "n3_lat3", "--silhouette", "eye=0,0,5"]))
     return cases
 
 

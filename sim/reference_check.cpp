@@ -38,6 +38,12 @@ std::string vec_str(const FxVec& v) {
   return os.str();
 }
 
+// The angle between two directions, accurate for small angles too (acos of a dot product near 1
+// cannot resolve angles below about 1e-8 rad, where the bounds of wide formats lie).
+double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+}
+
 PnInput dequantized_input(const TriangleFx& tri, const NumberFormat& fmt) {
   PnInput in;
   for (int i = 0; i < 3; ++i) {
@@ -138,7 +144,7 @@ bool ArithmeticCheck::check(const VertexFx& v) {
     ++scalar_tagged_;
     const double len = glm::length(nrm);
     if (len > 0 && glm::length(ref.normal) > 0)
-      acc_.add_normal_angle(std::acos(std::clamp(glm::dot(nrm / len, glm::normalize(ref.normal)), -1.0, 1.0)));
+      acc_.add_normal_angle(angle_between(nrm, ref.normal));
     return true;
   }
   bool beyond = pos_err > budget_.position_units + 1e-12;
@@ -147,8 +153,7 @@ bool ArithmeticCheck::check(const VertexFx& v) {
   const double len = glm::length(nrm);
   const double angle_bound = normal_angle_bound(normal_bound_, len);
   if (angle_bound >= 0) {  // the output normal has a direction to compare
-    const double c = std::clamp(glm::dot(nrm / len, glm::normalize(ref.normal)), -1.0, 1.0);
-    const double angle = std::acos(c);
+    const double angle = angle_between(nrm, ref.normal);
     acc_.add_normal_angle(angle);
     if (angle > angle_bound + 1e-9) {
       beyond = true;
@@ -220,7 +225,7 @@ VertexErrors MeshErrors::add(const VertexFx& v) {
   acc_.add_position(e.position);
   const glm::dvec3 nrm = normal_from_fixed(v.nrm, cfg_.format);
   if (glm::length(nrm) > 0) {  // a vanished normal has no direction to compare
-    e.normal_angle = std::atan2(glm::length(glm::cross(nrm, ref.normal)), glm::dot(nrm, ref.normal));
+    e.normal_angle = angle_between(nrm, ref.normal);
     acc_.add_normal_angle(*e.normal_angle);
   }
   return e;

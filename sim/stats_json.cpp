@@ -86,7 +86,7 @@ nlohmann::json stats_units() {
       {"workload.vertices_per_patch.min", "vertices"},
       {"workload.vertices_per_patch.mean", "vertices"},
       {"workload.vertices_per_patch.max", "vertices"},
-      {"workload.vertices_per_patch_log2_histogram[]", "patches with 2^i..2^(i+1)-1 vertices"},
+      {"workload.vertices_per_patch_log2_histogram[]", "patches with 2^(i+1)..2^(i+2)-1 vertices (i = 0: 3, single triangles)"},
       {"analytic.cycles_per_vertex", "cycles/vertex"},
       {"analytic.bounds.cpg", "cycles/vertex"},
       {"analytic.bounds.dpg", "cycles/vertex"},

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,21 @@ using tessim::testing::run_tessim;
 using tessim::testing::TempDir;
 
 const char* const kWuson = "/usr/share/assimp/models/PLY/Wuson.ply";
+
+// The largest distance from a point of `a` to its nearest point of `b`, searched within `reach`
+// (beyond it: reported as 2 reach).
+double farthest_from(std::vector<glm::dvec3> a, std::vector<glm::dvec3> b, double reach) {
+  std::sort(b.begin(), b.end(), [](const glm::dvec3& p, const glm::dvec3& q) { return p.x < q.x; });
+  double worst = 0;
+  for (const glm::dvec3& p : a) {
+    double nearest = 2 * reach;
+    auto it = std::lower_bound(b.begin(), b.end(), p.x - reach, [](const glm::dvec3& q, double x) { return q.x < x; });
+    for (; it != b.end() && it->x <= p.x + reach; ++it) nearest = std::min(nearest, glm::length(*it - p));
+    worst = std::max(worst, nearest);
+  }
+  return worst;
+}
+
 
 TEST(SilhouetteCli, TessellateWritesTheBlendedPatchesOfTheModel) {
   TempDir dir;
@@ -101,6 +117,94 @@ TEST(SilhouetteCli, AdaptiveSilhouetteSpendsFewerTrianglesThanTheScreenRule) {
   EXPECT_GT(silhouette, load_mesh(kWuson).triangle_count());
 }
 
+// The unit's output (`sim --silhouette`, the interface the checks use): per patch, in the order of
+// `tessellate --silhouette`, each position within the unit's derived bound plus the host's
+// rounding of alpha to A bits (docs/number-formats.md §7) of the float reference.
+TEST(SilhouetteCli, SimWritesTheUnitsBlendedOutputWithinItsBound) {
+  TempDir dir;
+  const Mesh mesh = load_mesh(kWuson);
+  double longest = 0;
+  for (const glm::uvec3& t : mesh.triangles)
+    for (int e = 0; e < 3; ++e)
+      longest = std::max(longest, glm::length(mesh.positions[t[(e + 1) % 3]] - mesh.positions[t[e]]));
+  const double diagonal = bounding_box(mesh).diagonal();
+  const fs::path ref = dir.path() / "ref.ply";
+  ASSERT_EQ(run_tessim({"tessellate", kWuson, "-L", "3", "--silhouette", "eye=3,1,-3,beta=0.3", "-o", ref.string()},
+                       dir.path()).status, 0);
+  const Mesh expected = load_mesh(ref);
+  for (const int bits : {0, 3, 16}) {  // 0: the configuration has no alpha, sim takes the default 8
+    const fs::path out = dir.path() / ("unit" + std::to_string(bits) + ".ply");
+    std::vector<std::string> args{"sim", kWuson, "-L", "3", "--silhouette", "eye=3,1,-3,beta=0.3", "-o", out.string()};
+    if (bits) args.insert(args.end(), {"--alpha-bits", std::to_string(bits)});
+    const auto r = run_tessim(args, dir.path());
+    ASSERT_EQ(r.status, 0) << r.err;
+    const int a = bits ? bits : 8;
+    EXPECT_EQ(r.err.find("alpha_bits 8 (the configuration had 0)") != std::string::npos, bits == 0) << r.err;
+    const Mesh unit = load_mesh(out);
+    // Arithmetic (about 1e-6 of the diagonal) and single-precision files, then |delta alpha| |w| / 3.
+    const double bound = 2e-6 * diagonal + std::ldexp(1.0, -(a + 1)) * longest / 3.0;
+    const double worst = std::max(farthest_from(unit.positions, expected.positions, bound),
+                                  farthest_from(expected.positions, unit.positions, bound));
+    EXPECT_LE(worst, bound) << "alpha_bits " << a;
+    if (a == 3) {
+      EXPECT_GT(worst, 2e-6 * diagonal) << "3-bit alpha shows beside the arithmetic";
+    }
+  }
+  // Without --silhouette the unit's output is plain PN: the blend changed it.
+  const fs::path plain = dir.path() / "plain.ply";
+  ASSERT_EQ(run_tessim({"sim", kWuson, "-L", "3", "-o", plain.string()}, dir.path()).status, 0);
+  EXPECT_NE(load_mesh(plain).positions, load_mesh(dir.path() / "unit16.ply").positions);
+}
+
+// The silhouette rule's factors on the unit: the patches the reference makes, and crack-free (the
+// welded output has as many vertices as the reference's).
+TEST(SilhouetteCli, SimTakesTheSilhouetteRulesFactors) {
+  TempDir dir;
+  const std::vector<std::string> view{"--adaptive", "silhouette", "--camera", "eye=2.6,1.3,-2.9,target=0,0.6,-0.2",
+                                      "--silhouette", "camera"};
+  // The element counts of the written (welded) file: the mesh reader would weld again by position.
+  auto run = [&](const char* cmd, const char* name) {
+    std::vector<std::string> args{cmd, kWuson, "-o", (dir.path() / name).string(), "--weld"};
+    args.insert(args.end(), view.begin(), view.end());
+    const auto r = run_tessim(args, dir.path());
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::ifstream in(dir.path() / name, std::ios::binary);
+    std::string line, counts;
+    while (std::getline(in, line) && line != "end_header")
+      if (line.rfind("element ", 0) == 0) counts += line + "; ";
+    return counts;
+  };
+  const std::string unit = run("sim", "unit.ply");
+  // Every shared point welded as in the crack-free reference: as many vertices and triangles.
+  EXPECT_EQ(unit, run("tessellate", "ref.ply"));
+}
+
+// A feature end (a crease through vertex 0 between the two faces of edge 0-1) is the reference's:
+// the unit refuses the mesh, naming the vertex, and writes nothing.
+TEST(SilhouetteCli, SimRefusesAFeatureEndNamingItsVertex) {
+  TempDir dir;
+  const fs::path mesh = dir.path() / "crease.ply";
+  {
+    std::FILE* f = std::fopen(mesh.string().c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float dx\nproperty float dy\nproperty float dz\nproperty float sigma\nproperty float theta\n"
+               "property float beta\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+               "0 0 0 0 -1 1 1 0 0\n1 0 0 0 0 0 0 0 0\n0.5 1 0 0 0 0 0 0 0\n0.5 -0.5 1 0 0 0 0 0 0\n3 0 1 2\n3 1 0 3\n",
+               f);
+    std::fclose(f);
+  }
+  const fs::path out = dir.path() / "o.ply";
+  const auto r = run_tessim({"sim", mesh.string(), "--silhouette", "eye=0,0,5", "-o", out.string()}, dir.path());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("crease.ply: vertex 0: a feature end of the silhouette"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  // The reference computes it.
+  const auto t = run_tessim({"tessellate", mesh.string(), "--silhouette", "eye=0,0,5", "-o", out.string()}, dir.path());
+  EXPECT_EQ(t.status, 0) << t.err;
+  EXPECT_NE(t.out.find("1 feature ends"), std::string::npos) << t.out;
+}
+
 TEST(SilhouetteCli, BadSilhouettesAreInputErrors) {
   TempDir dir;
   const std::string out = (dir.path() / "x.ply").string();
@@ -121,8 +225,8 @@ TEST(SilhouetteCli, BadSilhouettesAreInputErrors) {
       {{"render", kWuson, "-o", out + ".png", "--color", "silhouette"}, "silhouette needs --silhouette"},
       {{"info", kWuson, "--silhouette", "camera"}, "info has no camera"},
       {{"tessellate", kWuson, "-o", out, "--silhouette", "eye=0,0,5,blend=maybe"}, "is not on or off"},
-      {{"sim", kWuson, "-o", out, "--adaptive", "silhouette", "--camera", "eye=0,0,5"},
-       "the unit's triangle interface does not carry"},
+      {{"sim", kWuson, "-o", out, "--silhouette", "eye=0,0,5,beta=0"}, "must be a positive finite number"},
+      {{"sim", kWuson, "-o", out, "--silhouette", "camera"}, "'camera' takes the eye of --adaptive"},
       {{"tessellate", kWuson, "-o", out, "--adaptive", "silhouette", "--camera", "eye=0,0,5", "--pixels-per-segment", "4"},
        "is the screen rule's"},
       {{"tessellate", kWuson, "-o", out, "--adaptive", "screen", "--camera", "eye=0,0,5", "--outline-tolerance", "1"},

@@ -278,7 +278,10 @@ TEST(RtlSmoke, VariantsAreListedAndUnknownNamesRejected) {
   hw.cpg = {3, 8, 2, 1};
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), std::nullopt) << "n2_l3r8 takes scalar tags";
   hw.cpg_tags = 1;
+  EXPECT_EQ(rtl::find_rtl_variant(hw, false), std::nullopt) << "n2_l3r8 takes alpha";
+  hw.format.alpha_bits = 8;
   EXPECT_EQ(rtl::find_rtl_variant(hw, false), "n2_l3r8");
+  EXPECT_EQ(rtl::make_rtl_unit("n2_l3r8")->config().format.alpha_bits, 8);
   EXPECT_EQ(rtl::make_rtl_unit("n2_l3r8")->config().cpg_tags, 1);
   EXPECT_EQ(rtl::make_rtl_unit("n2")->config().cpg_tags, 0);
   hw.cpg = {3, 7};

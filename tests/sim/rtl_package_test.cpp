@@ -234,7 +234,7 @@ TEST(RtlBuilds, EmbeddedListAndFlags) {
   ASSERT_NE(lat3, nullptr);
   EXPECT_EQ(lat3->flags(), (std::vector<std::string>{"--int-blocks", "3", "--int-latency", "3", "--te-contexts", "6",
                                                       "--cpg-lanes", "3", "--cpg-digit-bits", "5", "--cpg-tags", "1",
-                                                      "--cpg-copies", "2", "--cpg-product-reg", "1"}));
+                                                      "--cpg-copies", "2", "--cpg-product-reg", "1", "--alpha-bits", "8"}));
   EXPECT_EQ(find_rtl_build("n2_bug2")->inject_bug(), 2);
   EXPECT_TRUE(find_rtl_build("n2_verif")->verif);
 }
