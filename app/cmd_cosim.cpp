@@ -160,10 +160,10 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
                 (mixed ? "mixed partitionings" : partitioning_name(pattern->partitioning));
   } else {
     const Mesh mesh = load_mesh(a.mesh);
+    const std::shared_ptr<const MeshSilhouette> silhouette = pattern_options.silhouette_for(pattern, cfg.tess_factor, mesh);
     if (!cfg.cpg_tags) warn_tags_ignored(mesh, "cosim");
     else warn_tags_lost(mesh, cfg.format);
     const sim::HostScaling scaling = sim::host_scaling(mesh);
-    const std::shared_ptr<const MeshSilhouette> silhouette = pattern_options.silhouette_for(pattern, cfg.tess_factor, mesh);
     TessSettings settings;
     settings.L = cfg.tess_factor;
     if (pattern) settings = *pattern;

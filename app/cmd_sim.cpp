@@ -155,9 +155,10 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
                          std::to_string(cfg.format.bary_bits));
 
   const Mesh mesh = load_mesh(a.mesh);
+  // First: a feature end (from the tags) is an error, which no warning about the tags precedes.
+  const std::shared_ptr<const MeshSilhouette> silhouette = a.pattern.silhouette_for(pattern, cfg.tess_factor, mesh);
   if (!cfg.cpg_tags) warn_tags_ignored(mesh, "sim");
   else warn_tags_lost(mesh, cfg.format);
-  const std::shared_ptr<const MeshSilhouette> silhouette = a.pattern.silhouette_for(pattern, cfg.tess_factor, mesh);
   if (silhouette && !cfg.format.takes_alpha()) {
     // The blend needs the unit's alpha input: a configuration without one gets the default width.
     cfg.format.alpha_bits = sim::kDefaultAlphaBits;

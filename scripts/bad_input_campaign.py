@@ -130,12 +130,6 @@ def mesh_fixtures() -> dict[str, bytes]:
     # Scalar tags out of range or breaking the format's rules
     base = ["0 0 0", "1 0 0", "0 1 0"]
     tag = lambda xyz, t: f"{xyz} {t}"  # noqa: E731
-    # A crease through vertex 0 between the two faces of edge 0-1: with --silhouette a feature end,
-    # which the unit's CPG does not blend (tessim sim refuses it, naming vertex 0).
-    m["silhouette_feature_end.ply"] = ply_ascii(
-        ["x", "y", "z", "dx", "dy", "dz", "sigma", "theta", "beta"],
-        ["0 0 0 0 -1 1 1 0 0", "1 0 0 0 0 0 0 0 0", "0.5 1 0 0 0 0 0 0 0", "0.5 -0.5 1 0 0 0 0 0 0"],
-        ["3 0 1 2", "3 1 0 3"]).encode()
     m["tag_beta.ply"] = tagged_ply([tag(base[0], "0 0 1 1 0 2"), tag(base[1], "0 0 0 0 0 0"), tag(base[2], "0 0 0 0 0 0")]).encode()
     m["tag_negative_sigma.ply"] = tagged_ply([tag(base[0], "0 0 1 -1 0 0"), tag(base[1], "0 0 0 0 0 0"), tag(base[2], "0 0 0 0 0 0")]).encode()
     m["tag_theta.ply"] = tagged_ply([tag(base[0], "0 0 0 0 7 0"), tag(base[1], "0 0 0 0 0 0"), tag(base[2], "0 0 0 0 0 0")]).encode()
@@ -322,8 +316,8 @@ def factor_cases(mesh: str) -> list[Case]:
             cases.append(Case("silhouette", cmd + ["--silhouette", text]))
     # The unit blends smooth edge ends only: a feature end is refused, naming its vertex; the blend
     # needs a build that takes alpha, and a mesh (--random draws alpha itself).
-    for cmd in (["sim", "{data}/silhouette_feature_end.ply", "-o", "{work}/o.ply"],
-                ["sim", "{data}/silhouette_feature_end.ply", "-o", "{work}/o.ply", "--alpha-bits", "4"]):
+    for cmd in (["sim", "{data}/feature_end.ply", "-o", "{work}/o.ply"],
+                ["sim", "{data}/feature_end.ply", "-o", "{work}/o.ply", "--alpha-bits", "4"]):
         cases.append(Case("silhouette", cmd + ["--silhouette", "eye=0,0,5"]))
     cases.append(Case("silhouette", ["cosim", mesh, "--int-blocks", "2", "--silhouette", "eye=0,0,5"]))
     cases.append(Case("silhouette", ["cosim", "--random", "4", "--variant", "n3_lat3", "--silhouette", "eye=0,0,5"]))
@@ -396,6 +390,12 @@ def write_fixtures(data: Path, stats_sample: bytes | None) -> None:
         for name, content in files.items():
             (data / sub / name).write_bytes(content)
     (data / "big.json").write_bytes(b'{"int_blocks": 2' + b" " * (300 << 20) + b"}")
+    # A valid mesh with a crease through vertex 0 between the two faces of edge 0-1: with
+    # --silhouette a feature end, which the unit's CPG does not blend (sim refuses it, naming vertex 0).
+    (data / "feature_end.ply").write_bytes(ply_ascii(
+        ["x", "y", "z", "dx", "dy", "dz", "sigma", "theta", "beta"],
+        ["0 0 0 0 -1 1 1 0 0", "1 0 0 0 0 0 0 0 0", "0.5 1 0 0 0 0 0 0 0", "0.5 -0.5 1 0 0 0 0 0 0"],
+        ["3 0 1 2", "3 1 0 3"]).encode())
     (data / "tagged.ply").write_bytes(tagged_ply(["0 0 0 0 0 1 1 0 0", "1 0 0 0 0 0 0 0 0", "0 1 0 0 0 0 0 0 0"]).encode())
     os.mkfifo(data / "fifo.json")
 

@@ -1208,8 +1208,10 @@ INDEX_BYTES = 4
 def item_bits(item, r):
     """Bits of one item of the unit's interfaces (`tessim schema`, interface.items: "triangle" in,
     "vertex" out) in row r's configuration: terms coef * product of variables."""
+    alpha_bits = r.get("alpha_bits") or 0
     values = {"W": 1 + r["coord_int_bits"] + r["coord_frac_bits"], "bary_bits": r["bary_bits"],
-              "int_blocks": r["int_blocks"], "cpg_tags": r.get("cpg_tags") or 0}
+              "int_blocks": r["int_blocks"], "cpg_tags": r.get("cpg_tags") or 0, "alpha_bits": alpha_bits,
+              "takes_alpha": 1 if alpha_bits > 0 else 0}
     return sum(t["coef"] * math.prod(values[v] for v in t["of"]) for t in item["terms"])
 
 
