@@ -88,7 +88,8 @@ void add_pattern_options(CLI::App& cmd, PatternOptions& options, const char* com
 // Throws InputError(command line, --silhouette, reason) for malformed text, a non-finite eye or
 // beta <= 0 / not finite.
 SilhouetteSettings parse_silhouette_option(const std::string& text);
-CLI::Option* add_silhouette_option(CLI::App& cmd, std::string& text);
+// `unit`: the option of sim and cosim, whose help says what reaches the unit.
+CLI::Option* add_silhouette_option(CLI::App& cmd, std::string& text, bool unit = false);
 // One line: how many edges the silhouette makes flat, blended and curved (tessellate, render, info).
 void print_silhouette_counts(std::FILE* out, const MeshSilhouette& silhouette);
 

@@ -256,11 +256,13 @@ void print_silhouette_counts(std::FILE* out, const MeshSilhouette& silhouette) {
                c.boundary, c.non_manifold, c.feature_ends);
 }
 
-CLI::Option* add_silhouette_option(CLI::App& cmd, std::string& text) {
+CLI::Option* add_silhouette_option(CLI::App& cmd, std::string& text, bool unit) {
   return cmd.add_option("--silhouette", text,
                  "silhouette enhancement: eye=x,y,z[,beta=B][,blend=off] or camera[,beta=B][,blend=off] (the --camera "
                  "eye); each edge's silhouetteness blends its patch between flat and PN (beta default 0.25; blend=off: "
-                 "the silhouetteness only drives --adaptive silhouette, docs/mathematics.md)");
+                 "the silhouetteness only drives --adaptive silhouette, docs/mathematics.md)" +
+                     std::string(unit ? "; the host sends each edge's alpha to the unit's CPG (alpha_bits, 8 when the "
+                                        "configuration has 0); a feature end is refused" : ""));
 }
 
 void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) {
@@ -389,7 +391,7 @@ void add_unit_pattern_options(CLI::App& cmd, UnitPatternOptions& o, const char* 
   cmd.add_option("--outer", o.outer, "D3D11 outer factors A,B,C (edges u=0, v=0, w=0), the same for every patch");
   cmd.add_option("--inner", o.inner, "D3D11 inner factor with --outer (default: the largest outer factor)");
   add_adaptive_options(cmd, o.adaptive, command);
-  o.silhouette_option = add_silhouette_option(cmd, o.silhouette);
+  o.silhouette_option = add_silhouette_option(cmd, o.silhouette, true);
 }
 
 std::optional<TessSettings> UnitPatternOptions::settings(const char* command, int L) const {
