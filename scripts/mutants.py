@@ -29,8 +29,9 @@ import sweep  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RTL_BUILDS = "n1;n3_lat3;n2_w28b20;n1_w20b18"
-# Test binaries built beside tessim for the stimuli that drive the unit below the host (raw factors).
-TEST_TARGETS = ["fsu_cosim_test"]
+# Test binaries built beside tessim for the stimuli that drive the unit below the host (raw factors,
+# searched alpha rounding ties).
+TEST_TARGETS = ["fsu_cosim_test", "silhouette_cosim_test"]
 WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
 
 
@@ -81,6 +82,10 @@ def stimulus(tessim):
                                               "--normals", "reflect", "--gpe-cycles", "1"] + W20),
         # Raw D3D11 factors, every value the interface admits (tests/cosim/fsu_cosim_test.cpp, on n3_lat3).
         ("FSU raw factors N=3 (fsu_cosim_test)", {"test": "fsu_cosim_test", "filter": "FsuRawFactors.*"}),
+        # Streams searched for the rare triangles whose output the rounding of alpha w decides
+        # (tests/cosim/silhouette_cosim_test.cpp), on every build of the copy that takes alpha.
+        ("alpha rounding ties (silhouette_cosim_test)", {"test": "silhouette_cosim_test",
+                                                         "filter": "CosimSilhouette.RoundingTies*"}),
     ]
 
 
