@@ -263,6 +263,9 @@ void run_render(const RenderArgs& args) {
   if (is_error_mode(colour) && settings.kind != PatternKind::Uniform)
     throw InputError("command line", "--color",
                      args.color + " measures the unit, which tessellates with the uniform pattern: use -L");
+  if (is_error_mode(colour) && settings.displace.enabled())
+    throw InputError("command line", "--displace",
+                     args.color + " measures the unit, which does not displace (float reference only)");
   if (is_error_mode(colour) && mode == NormalMode::Derivative)
     throw InputError("command line", "--normals", "the unit has no derivative normals (float reference only)");
   if (!(args.color_max >= 0.0) || !std::isfinite(args.color_max))

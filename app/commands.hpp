@@ -79,6 +79,15 @@ struct PatternOptions {
   const CLI::Option* silhouette_option = nullptr;  // set by add_pattern_options
 
   bool silhouette_given() const { return !silhouette.empty() || (silhouette_option && silhouette_option->count() > 0); }
+  // --displace sine --amplitude A --frequency F (docs/mathematics.md §12); set by add_pattern_options.
+  std::string displace;
+  double amplitude = 0.0, frequency = 0.0;
+  const CLI::Option* displace_option = nullptr;
+  const CLI::Option* amplitude_option = nullptr;
+  const CLI::Option* frequency_option = nullptr;
+  // The displacement the options ask for (none without --displace); InputError for a bad kind, a
+  // missing or bad amplitude or frequency, or either without --displace.
+  DisplaceSettings displace_settings() const;
 
   // Throws InputError(command, option, reason).
   TessSettings settings(const char* command) const;

@@ -278,6 +278,34 @@ void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) 
   cmd.add_option("--inner", o.inner, "D3D11 inner factor with --outer (default: the largest outer factor)");
   add_adaptive_options(cmd, o.adaptive, command);
   o.silhouette_option = add_silhouette_option(cmd, o.silhouette);
+  o.displace_option = cmd.add_option("--displace", o.displace,
+                                     "procedural displacement of every point along its unit normal: sine (P + a sin(f |P|) N "
+                                     "with Blinn's perturbed normal, |P| in the mesh's coordinates; docs/mathematics.md §12)");
+  o.amplitude_option = cmd.add_option("--amplitude", o.amplitude, "with --displace: the amplitude a, in the mesh's units")
+                           ->transform(number_check<double>(kCommandLine, "--amplitude", "finite numbers"));
+  o.frequency_option = cmd.add_option("--frequency", o.frequency,
+                                      "with --displace: the frequency f >= 0, radians per unit of |P|")
+                           ->transform(number_check<double>(kCommandLine, "--frequency", "finite numbers"));
+}
+
+DisplaceSettings PatternOptions::displace_settings() const {
+  DisplaceSettings d;
+  const bool amplitude_given = amplitude_option && amplitude_option->count() > 0;
+  const bool frequency_given = frequency_option && frequency_option->count() > 0;
+  if (!(displace_option && displace_option->count() > 0)) {
+    if (amplitude_given) throw InputError(kCommandLine, "--amplitude", "needs --displace sine");
+    if (frequency_given) throw InputError(kCommandLine, "--frequency", "needs --displace sine");
+    return d;
+  }
+  if (displace != "sine") throw InputError(kCommandLine, "--displace", "'" + displace + "' is not sine");
+  if (!amplitude_given || !frequency_given)
+    throw InputError(kCommandLine, amplitude_given ? "--frequency" : "--amplitude",
+                     "--displace sine needs --amplitude A and --frequency F");
+  d.kind = DisplaceKind::Sine;
+  d.amplitude = amplitude;
+  d.frequency = frequency;
+  validate(d, kCommandLine);
+  return d;
 }
 
 void AdaptiveOptions::check_given_alone() const {
@@ -346,6 +374,7 @@ void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
 TessSettings PatternOptions::settings(const char* command) const {
   TessSettings s;
   s.L = factor;
+  s.displace = displace_settings();
   check_tess_factor(command, factor);
   const bool fixed = !outer.empty() || !inner.empty();
   if (fixed && adaptive.given()) throw InputError(kCommandLine, "--outer", "cannot be combined with --adaptive");

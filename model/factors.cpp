@@ -41,6 +41,8 @@ std::string TessSettings::describe() const {
                                     : ", silhouettes from eye " + format_vec(silhouette.eye);
     s += " (beta " + number(silhouette.beta) + (silhouette.blend ? ")" : ", factors only)");
   }
+  if (displace.enabled())
+    s += ", displaced by " + number(displace.amplitude) + " sin(" + number(displace.frequency) + " |P|)";
   return s;
 }
 
@@ -121,6 +123,7 @@ PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::
 
 void validate(const TessSettings& s, const std::string& source) {
   validate(s.silhouette, source);
+  validate(s.displace, source);
   if (s.kind == PatternKind::Uniform) {
     if (s.L < 1 || s.L > kMaxTessFactor)
       throw InputError(source, "-L", "tessellation factor " + std::to_string(s.L) + " is outside 1.." +

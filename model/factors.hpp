@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "model/displace.hpp"
 #include "model/d3d11_types.hpp"
 #include "model/mesh.hpp"
 #include "model/silhouette.hpp"
@@ -55,6 +56,8 @@ struct TessSettings {
   SilhouetteSettings silhouette;
   // The α of every edge for the mesh being tessellated, once bind_silhouette() has built it.
   std::shared_ptr<const MeshSilhouette> silhouette_field;
+  // Procedural displacement of every evaluated point (independent of the pattern; float reference).
+  DisplaceSettings displace;
 
   bool uses_silhouette() const {
     return silhouette.enabled || (kind == PatternKind::D3D11 && source == FactorSource::Adaptive &&

@@ -135,9 +135,10 @@ namespace {
 // operations counted are those the unit's de Casteljau performs.
 // With silhouettes (`silhouette` given) the control points are the blended ones of
 // make_silhouette_patch, on a tagged mesh with each face's sharp normals (docs/mathematics.md §11).
+// With displacement on, each evaluated point is displaced along its unit normal (displace()).
 void evaluate_patch(const Mesh& mesh, std::size_t t, const DomainPattern& domain, NormalMode mode,
-                    const MeshSilhouette* silhouette, glm::dvec3* positions, glm::dvec3* normals,
-                    TessellationSummary& summary) {
+                    const MeshSilhouette* silhouette, const DisplaceSettings& displacement, glm::dvec3* positions,
+                    glm::dvec3* normals, TessellationSummary& summary) {
   const glm::uvec3& tri = mesh.triangles[t];
   PnInput input;
   std::array<VertexTags, 3> tags{};
@@ -154,8 +155,9 @@ void evaluate_patch(const Mesh& mesh, std::size_t t, const DomainPattern& domain
   if (is_zero_area(input.p[0], input.p[1], input.p[2])) ++summary.degenerate_triangles;
   for (std::size_t i = 0; i < domain.basis.size(); ++i) {
     const PnVertex vertex = eval_bernstein(patch, domain.basis[i]);
-    positions[i] = vertex.position;
-    normals[i] = vertex.normal;
+    const DisplacedPoint point = displace(displacement, vertex.position, vertex.normal);
+    positions[i] = point.position;
+    normals[i] = point.normal;
   }
   summary.int_ops += domain.basis.size() * static_cast<std::uint64_t>(de_casteljau_ops(mode));
   ++summary.patches;
@@ -178,8 +180,8 @@ void add(TessellationSummary& into, const TessellationSummary& s) {
 // independent, so the sink sees exactly what the sequential loop gives it, in the same order;
 // memory stays a few batches whatever the mesh.
 TessellationSummary tessellate_uniform_parallel(const Mesh& mesh, const DomainPattern& domain, NormalMode mode,
-                                                const MeshSilhouette* silhouette, const PatchSink& sink,
-                                                unsigned workers) {
+                                                const MeshSilhouette* silhouette, const DisplaceSettings& displacement,
+                                                const PatchSink& sink, unsigned workers) {
   const std::size_t patch_vertices = domain.points.size();
   // About 64 Ki vertices per batch: large enough that handing batches over costs nothing.
   const std::size_t batch_patches = std::max<std::size_t>(1, (std::size_t{1} << 16) / patch_vertices);
@@ -218,7 +220,7 @@ TessellationSummary tessellate_uniform_parallel(const Mesh& mesh, const DomainPa
         slot.normals.resize((end - first) * patch_vertices);
         slot.summary = {};
         for (std::size_t t = first; t < end; ++t)
-          evaluate_patch(mesh, t, domain, mode, silhouette, &slot.positions[(t - first) * patch_vertices],
+          evaluate_patch(mesh, t, domain, mode, silhouette, displacement, &slot.positions[(t - first) * patch_vertices],
                          &slot.normals[(t - first) * patch_vertices], slot.summary);
       } catch (...) {
         std::lock_guard lock(mutex);
@@ -298,7 +300,8 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& given,
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   if (settings.kind == PatternKind::Uniform && cores > 1 && !mesh.triangles.empty() &&
       mesh.triangles.size() * patterns.pattern(mesh, 0).points.size() > (std::size_t{1} << 17))
-    return tessellate_uniform_parallel(mesh, patterns.pattern(mesh, 0), mode, silhouette, sink, cores);
+    return tessellate_uniform_parallel(mesh, patterns.pattern(mesh, 0), mode, silhouette, settings.displace, sink,
+                                       cores);
 
   // The two buffers every patch is written into: memory stays one patch, whatever the mesh.
   std::vector<glm::dvec3> positions, normals;
@@ -311,7 +314,7 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& given,
     }
     positions.resize(domain.points.size());
     normals.resize(domain.points.size());
-    evaluate_patch(mesh, t, domain, mode, silhouette, positions.data(), normals.data(), summary);
+    evaluate_patch(mesh, t, domain, mode, silhouette, settings.displace, positions.data(), normals.data(), summary);
 
     PatchView view;
     view.triangle = static_cast<std::uint32_t>(t);

@@ -320,6 +320,16 @@ def factor_cases(mesh: str) -> list[Case]:
                 ["sim", "{data}/feature_end.ply", "-o", "{work}/o.ply", "--alpha-bits", "4"]):
         cases.append(Case("silhouette", cmd + ["--silhouette", "eye=0,0,5"]))
     cases.append(Case("silhouette", ["cosim", mesh, "--int-blocks", "2", "--silhouette", "eye=0,0,5"]))
+    # Displacement (float reference): non-finite, negative or overflowing settings, a kind that
+    # does not exist, an amplitude without --displace.
+    for cmd in (["tessellate", mesh, "-o", "{work}/o.ply"], ["render", mesh, "-o", "{work}/o.png"]):
+        for extra in (["--displace", "sine", "--amplitude", "nan", "--frequency", "1"],
+                      ["--displace", "sine", "--amplitude", "1", "--frequency", "-1"],
+                      ["--displace", "sine", "--amplitude", "inf", "--frequency", "1"],
+                      ["--displace", "wobble", "--amplitude", "1", "--frequency", "1"],
+                      ["--amplitude", "1"],
+                      ["--displace", "sine", "--amplitude", "1e300", "--frequency", "1e300"]):
+            cases.append(Case("displace", cmd + extra))
     cases.append(Case("silhouette", ["cosim", "--random", "4", "--variant", "n3_lat3", "--silhouette", "eye=0,0,5"]))
     return cases
 
