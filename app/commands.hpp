@@ -79,7 +79,7 @@ struct PatternOptions {
   const CLI::Option* silhouette_option = nullptr;  // set by add_pattern_options
 
   bool silhouette_given() const { return !silhouette.empty() || (silhouette_option && silhouette_option->count() > 0); }
-  // --displace sine --amplitude A --frequency F (docs/mathematics.md §12); set by add_pattern_options.
+  // --displace sine|noise --amplitude A --frequency F (docs/mathematics.md §12); set by add_pattern_options.
   std::string displace;
   double amplitude = 0.0, frequency = 0.0;
   const CLI::Option* displace_option = nullptr;

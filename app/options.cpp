@@ -279,8 +279,9 @@ void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) 
   add_adaptive_options(cmd, o.adaptive, command);
   o.silhouette_option = add_silhouette_option(cmd, o.silhouette);
   o.displace_option = cmd.add_option("--displace", o.displace,
-                                     "procedural displacement of every point along its unit normal: sine (P + a sin(f |P|) N "
-                                     "with Blinn's perturbed normal, |P| in the mesh's coordinates; docs/mathematics.md §12)");
+                                     "procedural displacement of every point along its unit normal, with Blinn's perturbed "
+                                     "normal: sine (P + a sin(f |P|) N, |P| in the mesh's coordinates) or noise (P + a "
+                                     "noise(f P) N, gradient noise); docs/mathematics.md §12");
   o.amplitude_option = cmd.add_option("--amplitude", o.amplitude, "with --displace: the amplitude a, in the mesh's units")
                            ->transform(number_check<double>(kCommandLine, "--amplitude", "finite numbers"));
   o.frequency_option = cmd.add_option("--frequency", o.frequency,
@@ -293,15 +294,16 @@ DisplaceSettings PatternOptions::displace_settings() const {
   const bool amplitude_given = amplitude_option && amplitude_option->count() > 0;
   const bool frequency_given = frequency_option && frequency_option->count() > 0;
   if (!(displace_option && displace_option->count() > 0)) {
-    if (amplitude_given) throw InputError(kCommandLine, "--amplitude", "needs --displace sine");
-    if (frequency_given) throw InputError(kCommandLine, "--frequency", "needs --displace sine");
+    if (amplitude_given) throw InputError(kCommandLine, "--amplitude", "needs --displace sine|noise");
+    if (frequency_given) throw InputError(kCommandLine, "--frequency", "needs --displace sine|noise");
     return d;
   }
-  if (displace != "sine") throw InputError(kCommandLine, "--displace", "'" + displace + "' is not sine");
+  if (displace != "sine" && displace != "noise")
+    throw InputError(kCommandLine, "--displace", "'" + displace + "' is not sine or noise");
   if (!amplitude_given || !frequency_given)
     throw InputError(kCommandLine, amplitude_given ? "--frequency" : "--amplitude",
-                     "--displace sine needs --amplitude A and --frequency F");
-  d.kind = DisplaceKind::Sine;
+                     "--displace needs --amplitude A and --frequency F");
+  d.kind = displace == "noise" ? DisplaceKind::Noise : DisplaceKind::Sine;
   d.amplitude = amplitude;
   d.frequency = frequency;
   validate(d, kCommandLine);

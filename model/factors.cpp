@@ -42,7 +42,9 @@ std::string TessSettings::describe() const {
     s += " (beta " + number(silhouette.beta) + (silhouette.blend ? ")" : ", factors only)");
   }
   if (displace.enabled())
-    s += ", displaced by " + number(displace.amplitude) + " sin(" + number(displace.frequency) + " |P|)";
+    s += ", displaced by " + number(displace.amplitude) +
+         (displace.kind == DisplaceKind::Noise ? " noise(" + number(displace.frequency) + " P)"
+                                               : " sin(" + number(displace.frequency) + " |P|)");
   return s;
 }
 

@@ -328,7 +328,8 @@ def factor_cases(mesh: str) -> list[Case]:
                       ["--displace", "sine", "--amplitude", "inf", "--frequency", "1"],
                       ["--displace", "wobble", "--amplitude", "1", "--frequency", "1"],
                       ["--amplitude", "1"],
-                      ["--displace", "sine", "--amplitude", "1e300", "--frequency", "1e300"]):
+                      ["--displace", "sine", "--amplitude", "1e300", "--frequency", "1e300"],
+                      ["--displace", "noise", "--amplitude", "1", "--frequency", "-1"]):
             cases.append(Case("displace", cmd + extra))
     cases.append(Case("silhouette", ["cosim", "--random", "4", "--variant", "n3_lat3", "--silhouette", "eye=0,0,5"]))
     return cases

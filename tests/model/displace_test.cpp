@@ -4,6 +4,7 @@
 // tessellate_mesh applying it to every evaluated point of every pattern.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -78,12 +79,61 @@ TEST(Displace, NormalIsTheHeightFieldsOnAPlane) {
     }
 }
 
+// Gradient noise: zero at lattice points, its gradient the analytic one (finite differences),
+// value and gradient continuous across cell faces, bounded, and the same everywhere in a run and
+// across runs (a fixed permutation).
+TEST(Displace, GradientNoise) {
+  for (int i = -3; i <= 3; ++i) EXPECT_EQ(gradient_noise(glm::dvec3(i, 2 * i, -i)).value, 0.0);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-20.0, 20.0);
+  double largest = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    const glm::dvec3 x(u(rng), u(rng), u(rng));
+    const NoiseSample n = gradient_noise(x);
+    largest = std::max(largest, std::abs(n.value));
+    const double e = 1e-6;
+    const glm::dvec3 numeric((gradient_noise(x + glm::dvec3(e, 0, 0)).value - gradient_noise(x - glm::dvec3(e, 0, 0)).value) / (2 * e),
+                             (gradient_noise(x + glm::dvec3(0, e, 0)).value - gradient_noise(x - glm::dvec3(0, e, 0)).value) / (2 * e),
+                             (gradient_noise(x + glm::dvec3(0, 0, e)).value - gradient_noise(x - glm::dvec3(0, 0, e)).value) / (2 * e));
+    EXPECT_LT(glm::length(n.gradient - numeric), 1e-7) << x.x << " " << x.y << " " << x.z;
+  }
+  EXPECT_LT(largest, 1.1);
+  EXPECT_GT(largest, 0.5);
+  // Across a cell face (x = 3): the value and the gradient from both sides agree.
+  for (double y = 0.05; y < 1.0; y += 0.1) {
+    const NoiseSample a = gradient_noise(glm::dvec3(3.0 - 1e-12, y, 0.37)), b = gradient_noise(glm::dvec3(3.0, y, 0.37));
+    EXPECT_NEAR(a.value, b.value, 1e-10);
+    EXPECT_LT(glm::length(a.gradient - b.gradient), 1e-9);
+  }
+  EXPECT_EQ(gradient_noise(glm::dvec3(0.3, 0.4, 0.5)).value, gradient_noise(glm::dvec3(0.3, 0.4, 0.5)).value);
+  // Far away or beyond the range: no NaN, no overflow in the lattice index.
+  EXPECT_TRUE(std::isfinite(gradient_noise(glm::dvec3(1e300, -1e300, 3e18)).value));
+  EXPECT_EQ(gradient_noise(glm::dvec3(INFINITY, 0, 0)).value, 0.0);
+  // The displacement: h = a noise(f P), normal from a f grad noise(f P), as sine's.
+  const DisplaceSettings d{DisplaceKind::Noise, 0.05, 3.0};
+  const glm::dvec3 nz(0.0, 0.0, 1.0);
+  for (double x = -1.0; x <= 1.0; x += 0.37)
+    for (double y = -1.0; y <= 1.0; y += 0.41) {
+      const DisplacedPoint q = displace(d, glm::dvec3(x, y, 0.0), nz);
+      EXPECT_EQ(q.position.z, 0.05 * gradient_noise(glm::dvec3(3 * x, 3 * y, 0.0)).value);
+      const double e = 1e-6;
+      auto h = [&](double px, double py) { return displace(d, glm::dvec3(px, py, 0.0), nz).position.z; };
+      const glm::dvec3 numeric = glm::normalize(
+          glm::dvec3(-(h(x + e, y) - h(x - e, y)) / (2 * e), -(h(x, y + e) - h(x, y - e)) / (2 * e), 1.0));
+      EXPECT_LT(glm::length(q.normal - numeric), 1e-7);
+    }
+}
+
 TEST(Displace, BadSettingsAreInputErrors) {
   EXPECT_THROW(validate(sine(std::nan(""), 1.0), "x"), InputError);
   EXPECT_THROW(validate(sine(1.0, INFINITY), "x"), InputError);
   EXPECT_THROW(validate(sine(1.0, -1.0), "x"), InputError);
   EXPECT_THROW(validate(sine(1e300, 1e300), "x"), InputError);
   EXPECT_NO_THROW(validate(sine(-0.1, 0.0), "x"));  // a negative amplitude pushes inwards
+  EXPECT_THROW(validate(DisplaceSettings{DisplaceKind::Noise, 1.0, -1.0}, "x"), InputError);
+  // A phase beyond the double range displaces nothing rather than giving NaN.
+  const DisplacedPoint far = displace(sine(1.0, 1e300), glm::dvec3(1e10, 0, 0), glm::dvec3(0, 0, 1));
+  EXPECT_EQ(far.position, glm::dvec3(1e10, 0, 0));
 }
 
 // Every point of every pattern (the uniform one evaluated on every core, a D3D11 one patch by patch)
