@@ -1,7 +1,6 @@
 // `tessellate|render --displace sine --amplitude A --frequency F` (docs/mathematics.md §12): the
 // per-patch output is the displaced surface of the model, and bad settings are input errors with
 // nothing written.
-#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,6 +11,7 @@
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"
+#include "tests/support/nearest_points.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -44,18 +44,7 @@ TEST(DisplaceCli, TessellateWritesTheDisplacedSurface) {
   // one of the model's, within float rounding.
   const Mesh written = load_mesh(out);
   const double tolerance = 1e-6 * bounding_box(mesh).diagonal();
-  std::size_t found = 0;
-  std::sort(expected.begin(), expected.end(), [](const glm::dvec3& a, const glm::dvec3& b) { return a.x < b.x; });
-  for (const glm::dvec3& p : written.positions) {
-    auto it = std::lower_bound(expected.begin(), expected.end(), p.x - tolerance,
-                               [](const glm::dvec3& a, double x) { return a.x < x; });
-    for (; it != expected.end() && it->x <= p.x + tolerance; ++it)
-      if (glm::length(*it - p) <= tolerance) {
-        ++found;
-        break;
-      }
-  }
-  EXPECT_EQ(found, written.positions.size());
+  EXPECT_LE(tessim::testing::farthest_from(written.positions, expected, tolerance), tolerance);
   // Not the plain surface.
   const fs::path plain = dir.path() / "p.ply";
   ASSERT_EQ(run_tessim({"tessellate", kWuson, "-L", "3", "-o", plain.string()}, dir.path()).status, 0);
