@@ -54,6 +54,15 @@ glm::dvec3 dequantize(const FxVec& x, const NumberFormat& fmt) {
           std::ldexp(static_cast<double>(x[2]), -F)};
 }
 
+PnInput dequantized_input(const TriangleFx& tri, const NumberFormat& fmt) {
+  PnInput in;
+  for (int i = 0; i < 3; ++i) {
+    in.p[i] = dequantize(tri.p[i], fmt);
+    in.n[i] = dequantize(tri.n[i], fmt);
+  }
+  return in;
+}
+
 TriangleFx to_fixed(const Mesh& mesh, std::size_t index, const HostScaling& scaling,
                     const NumberFormat& fmt, int L, bool with_tags) {
   const glm::uvec3& t = mesh.triangles[index];

@@ -18,6 +18,7 @@
 
 #include "model/factors.hpp"
 #include "model/mesh.hpp"
+#include "model/pn.hpp"
 #include "sim/cpg.hpp"
 #include "sim/fixed.hpp"
 
@@ -42,6 +43,9 @@ void check_convertible(const Mesh& mesh);
 std::int64_t quantize(double x, const NumberFormat& fmt);
 FxVec quantize(const glm::dvec3& x, const NumberFormat& fmt);
 glm::dvec3 dequantize(const FxVec& x, const NumberFormat& fmt);
+// The triangle's positions and normals as the float reference takes them: the values the unit
+// received (its quantized input), not the mesh's.
+PnInput dequantized_input(const TriangleFx& tri, const NumberFormat& fmt);
 
 // Input triangle `index` of the mesh, scaled and quantized, with factor L and id = index.
 // With `with_tags` the mesh's scalar tags come along (Δ, σ, θ, β quantized like normals;

@@ -44,15 +44,6 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
 }
 
-PnInput dequantized_input(const TriangleFx& tri, const NumberFormat& fmt) {
-  PnInput in;
-  for (int i = 0; i < 3; ++i) {
-    in.p[i] = dequantize(tri.p[i], fmt);
-    in.n[i] = dequantize(tri.n[i], fmt);
-  }
-  return in;
-}
-
 }  // namespace
 
 std::string describe(const VertexFx& x) {

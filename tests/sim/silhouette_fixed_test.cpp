@@ -38,18 +38,9 @@ TriangleFx sample_triangle(std::mt19937_64& rng, const NumberFormat& f) {
   return tri;
 }
 
-PnInput dequantized(const TriangleFx& tri, const NumberFormat& f) {
-  PnInput in;
-  for (int v = 0; v < 3; ++v) {
-    in.p[v] = dequantize(tri.p[v], f);
-    in.n[v] = dequantize(tri.n[v], f);
-  }
-  return in;
-}
-
 // The float blend with the alpha the unit received.
 PnPatch float_blend(const TriangleFx& tri, const NumberFormat& f, NormalMode mode) {
-  const PnInput in = dequantized(tri, f);
+  const PnInput in = dequantized_input(tri, f);
   PatchSilhouette s;
   for (std::size_t e = 0; e < 3; ++e) {
     s.alpha[e] = std::ldexp(static_cast<double>(tri.alpha[e]), -kAlphaFracBits);
@@ -84,7 +75,7 @@ TEST(SilhouetteFixed, AlphaZeroIsTheFlatTriangleAndTheNormalsStay) {
     for (NormalMode mode : kHardwareModes) {
       const ControlPointsFx cp = compute_control_points(tri, mode, f);
       const ControlPointsFx pn = compute_control_points(tri, mode, NumberFormat{});
-      const PnInput in = dequantized(tri, f);
+      const PnInput in = dequantized_input(tri, f);
       // Every tangent point is (2 Pi + Pj) / 3, rounded once; b111 the centroid.
       for (int i3 = 0; i3 <= 3; ++i3)
         for (int j3 = 0; i3 + j3 <= 3; ++j3) {

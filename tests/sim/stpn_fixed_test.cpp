@@ -39,15 +39,6 @@ TriangleFx sample_triangle(std::mt19937_64& rng) {
   return tri;
 }
 
-PnInput dequantized(const TriangleFx& tri) {
-  PnInput in;
-  for (int v = 0; v < 3; ++v) {
-    in.p[v] = dequantize(tri.p[v], kFormat);
-    in.n[v] = dequantize(tri.n[v], kFormat);
-  }
-  return in;
-}
-
 double largest_difference(const ControlPointsFx& cp, const PnPatch& ref, NormalMode mode) {
   double worst = 0.0;
   for (int i = 0; i < 10; ++i) worst = std::max(worst, glm::length(dequantize(cp.b[i], kFormat) - ref.b[i]));
@@ -112,7 +103,7 @@ TEST(StpnFixed, FollowsTheFloatReferenceForEveryKindOfTag) {
           tags[v] = {dequantize(tri.tags[v].delta, kFormat), t.sigma, t.theta, t.beta};
         }
         const ControlPointsFx cp = compute_control_points(tri, mode, kFormat);
-        const PnPatch ref = make_stpn_patch(dequantized(tri), tags, mode);
+        const PnPatch ref = make_stpn_patch(dequantized_input(tri, kFormat), tags, mode);
         ASSERT_EQ(cp.flags & kFlagSaturated, 0) << c.name;
         // A few LSB of 2^-20 per rounding; the normalizations of short vectors lose the most.
         EXPECT_LT(largest_difference(cp, ref, mode), 64.0 * std::ldexp(1.0, -20)) << c.name << " " << to_string(mode);
