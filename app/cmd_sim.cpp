@@ -167,6 +167,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   }
   sim::MeshPatterns patterns(pattern ? &*pattern : nullptr);
   patterns.silhouette = silhouette.get();
+  patterns.displace = a.pattern.displace.settings();
   const std::uint64_t triangles = mesh.triangle_count();
   if (chunks == 0)
     chunks = static_cast<int>(std::min<std::uint64_t>({std::max(1u, std::thread::hardware_concurrency()),
@@ -328,9 +329,11 @@ void register_sim(CLI::App& app) {
       ->needs(output);
   sub->add_flag("--schedule", args->schedule, "print the issue pattern of the first vertices");
   add_unit_pattern_options(*sub, args->pattern, "sim");
+  add_displace_options(*sub, args->pattern.displace, true);
   sub->add_flag("--errors", args->errors,
                 "compare every vertex with the float reference: end to end against the mesh, and the "
-                "arithmetic alone against its derived bound (summary and --stats \"errors\")");
+                "arithmetic alone against its derived bound (summary and --stats \"errors\"); the unit's output, "
+                "before any --displace");
   sub->add_option("--chunks", args->chunks,
                   "K: cut the triangle stream into K chunks (1.." + std::to_string(sim::kMaxChunks) +
                       ", or auto: one per hardware thread) simulated in parallel, each on a unit fresh from "

@@ -55,6 +55,8 @@ struct AdaptiveOptions {
   std::string adaptive, camera, viewport = "1280x720";
   double pixels_per_segment = 16.0;  // the screen rule's
   double outline_tolerance = 0.5;    // the silhouette rule's
+  double samples_per_wavelength = 4.0;  // the Nyquist rule's
+  const CLI::Option* samples_per_wavelength_option = nullptr;
 
   // Set by add_adaptive_options: whether --viewport, --pixels-per-segment and
   // --outline-tolerance were given.
@@ -70,6 +72,20 @@ struct AdaptiveOptions {
 };
 void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& options, const char* command);
 
+// --displace sine|noise --amplitude A --frequency F (docs/mathematics.md §12).
+struct DisplaceOptions {
+  std::string kind;
+  double amplitude = 0.0, frequency = 0.0;
+  const CLI::Option* kind_option = nullptr;  // set by add_displace_options
+  const CLI::Option* amplitude_option = nullptr;
+  const CLI::Option* frequency_option = nullptr;
+  // The displacement the options ask for (none without --displace); InputError for a bad kind, a
+  // missing or bad amplitude or frequency, or either without --displace.
+  DisplaceSettings settings() const;
+};
+// `unit`: the help of sim, where the geometry engine displaces the unit's output.
+void add_displace_options(CLI::App& cmd, DisplaceOptions& options, bool unit = false);
+
 struct PatternOptions {
   int factor = 4;
   std::string partitioning;
@@ -79,15 +95,7 @@ struct PatternOptions {
   const CLI::Option* silhouette_option = nullptr;  // set by add_pattern_options
 
   bool silhouette_given() const { return !silhouette.empty() || (silhouette_option && silhouette_option->count() > 0); }
-  // --displace sine|noise --amplitude A --frequency F (docs/mathematics.md §12); set by add_pattern_options.
-  std::string displace;
-  double amplitude = 0.0, frequency = 0.0;
-  const CLI::Option* displace_option = nullptr;
-  const CLI::Option* amplitude_option = nullptr;
-  const CLI::Option* frequency_option = nullptr;
-  // The displacement the options ask for (none without --displace); InputError for a bad kind, a
-  // missing or bad amplitude or frequency, or either without --displace.
-  DisplaceSettings displace_settings() const;
+  DisplaceOptions displace;  // set by add_pattern_options
 
   // Throws InputError(command, option, reason).
   TessSettings settings(const char* command) const;
@@ -110,6 +118,7 @@ struct UnitPatternOptions {
   AdaptiveOptions adaptive;
   std::string silhouette;  // --silhouette, as PatternOptions
   const CLI::Option* silhouette_option = nullptr;
+  DisplaceOptions displace;  // sim only: the geometry engine displaces the unit's output
 
   bool silhouette_given() const { return !silhouette.empty() || (silhouette_option && silhouette_option->count() > 0); }
   // The silhouette weights the host sends with the mesh's triangles (--silhouette with the blend

@@ -196,7 +196,15 @@ Partitioning parse_partitioning_option(const char* /*command*/, const std::strin
 
 void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& o, const char* /*command*/) {
   cmd.add_option("--adaptive", o.adaptive,
-                 "'screen': factors per edge from the edge's projected length; 'silhouette': that scaled by the edge's silhouetteness, with silhouette blending from the camera's eye (docs/patterns.md)");
+                 "'screen': factors per edge from the edge's projected length; 'silhouette': that scaled by the "
+                 "edge's silhouetteness, with silhouette blending from the camera's eye; 'nyquist': enough segments "
+                 "to sample the --displace wavelength along each edge --samples-per-wavelength times (no camera); "
+                 "'screen+nyquist', 'silhouette+nyquist': the larger factor of both (docs/patterns.md)");
+  o.samples_per_wavelength_option =
+      cmd.add_option("--samples-per-wavelength", o.samples_per_wavelength,
+                     "with --adaptive ...nyquist: points per shortest wavelength of the displacement along an edge (S >= 1)")
+          ->transform(number_check<double>(kCommandLine, "--samples-per-wavelength", "finite numbers >= 1"))
+          ->capture_default_str();
   cmd.add_option("--camera", o.camera, "with --adaptive: eye=x,y,z[,target=x,y,z][,fov=deg] (fov default 45)");
   o.viewport_option =
       cmd.add_option("--viewport", o.viewport, "with --adaptive: viewport WxH in pixels")->capture_default_str();
@@ -278,22 +286,32 @@ void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) 
   cmd.add_option("--inner", o.inner, "D3D11 inner factor with --outer (default: the largest outer factor)");
   add_adaptive_options(cmd, o.adaptive, command);
   o.silhouette_option = add_silhouette_option(cmd, o.silhouette);
-  o.displace_option = cmd.add_option("--displace", o.displace,
-                                     "procedural displacement of every point along its unit normal, with Blinn's perturbed "
-                                     "normal: sine (P + a sin(f |P|) N, |P| in the mesh's coordinates) or noise (P + a "
-                                     "noise(f P) N, gradient noise); docs/mathematics.md §12");
+  add_displace_options(cmd, o.displace);
+}
+
+void add_displace_options(CLI::App& cmd, DisplaceOptions& o, bool unit) {
+  o.kind_option = cmd.add_option(
+      "--displace", o.kind,
+      std::string("procedural displacement of every point along its unit normal, with Blinn's perturbed normal: "
+                  "sine (P + a sin(f |P|) N, |P| in the mesh's coordinates) or noise (P + a noise(f P) N, gradient "
+                  "noise); docs/mathematics.md §12") +
+          (unit ? "; the geometry engine applies it in float to the unit's output, at the cost per vertex of "
+                  "docs/microarchitecture.md §12 on top of K"
+                : ""));
   o.amplitude_option = cmd.add_option("--amplitude", o.amplitude, "with --displace: the amplitude a, in the mesh's units")
                            ->transform(number_check<double>(kCommandLine, "--amplitude", "finite numbers"));
   o.frequency_option = cmd.add_option("--frequency", o.frequency,
-                                      "with --displace: the frequency f >= 0, radians per unit of |P|")
+                                      "with --displace: the frequency f >= 0 (sine: radians per unit of |P|; noise: "
+                                      "lattice cells per unit)")
                            ->transform(number_check<double>(kCommandLine, "--frequency", "finite numbers"));
 }
 
-DisplaceSettings PatternOptions::displace_settings() const {
+DisplaceSettings DisplaceOptions::settings() const {
+  const std::string& displace = kind;
   DisplaceSettings d;
   const bool amplitude_given = amplitude_option && amplitude_option->count() > 0;
   const bool frequency_given = frequency_option && frequency_option->count() > 0;
-  if (!(displace_option && displace_option->count() > 0)) {
+  if (!(kind_option && kind_option->count() > 0)) {
     if (amplitude_given) throw InputError(kCommandLine, "--amplitude", "needs --displace sine|noise");
     if (frequency_given) throw InputError(kCommandLine, "--frequency", "needs --displace sine|noise");
     return d;
@@ -321,16 +339,38 @@ void AdaptiveOptions::check_given_alone() const {
     throw InputError(kCommandLine, "--pixels-per-segment", "needs --adaptive screen");
   if (outline_tolerance_option && outline_tolerance_option->count() > 0)
     throw InputError(kCommandLine, "--outline-tolerance", "needs --adaptive silhouette");
+  if (samples_per_wavelength_option && samples_per_wavelength_option->count() > 0)
+    throw InputError(kCommandLine, "--samples-per-wavelength", "needs --adaptive nyquist");
 }
 
 void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
-  if (adaptive != "screen" && adaptive != "silhouette")
-    throw InputError(kCommandLine, "--adaptive", "'" + adaptive + "' is not 'screen' or 'silhouette'");
-  if (camera.empty())
-    throw InputError(kCommandLine, "--camera", "--adaptive " + adaptive + " needs --camera eye=x,y,z");
+  static const std::vector<std::string> kRules{"screen", "silhouette", "nyquist", "screen+nyquist", "silhouette+nyquist"};
+  if (std::find(kRules.begin(), kRules.end(), adaptive) == kRules.end())
+    throw InputError(kCommandLine, "--adaptive",
+                     "'" + adaptive + "' is not screen, silhouette, nyquist, screen+nyquist or silhouette+nyquist");
   s.kind = PatternKind::D3D11;
   s.source = FactorSource::Adaptive;
-  s.rule = adaptive == "silhouette" ? AdaptiveRule::Silhouette : AdaptiveRule::Screen;
+  s.samples_per_wavelength = samples_per_wavelength;
+  const bool nyquist_given = samples_per_wavelength_option && samples_per_wavelength_option->count() > 0;
+  if (adaptive == "nyquist") {
+    // No camera: the rule looks at the displacement alone, and what it does not read is refused.
+    s.rule = AdaptiveRule::Nyquist;
+    if (!camera.empty()) throw InputError(kCommandLine, "--camera", "--adaptive nyquist takes no camera (screen+nyquist does)");
+    if (viewport_option && viewport_option->count() > 0)
+      throw InputError(kCommandLine, "--viewport", "--adaptive nyquist takes no camera (screen+nyquist does)");
+    if (pixels_per_segment_option && pixels_per_segment_option->count() > 0)
+      throw InputError(kCommandLine, "--pixels-per-segment", "is the screen rule's (screen+nyquist)");
+    if (outline_tolerance_option && outline_tolerance_option->count() > 0)
+      throw InputError(kCommandLine, "--outline-tolerance", "is the silhouette rule's (silhouette+nyquist)");
+    return;
+  }
+  s.with_nyquist = adaptive.ends_with("+nyquist");
+  if (!s.with_nyquist && nyquist_given)
+    throw InputError(kCommandLine, "--samples-per-wavelength", "needs --adaptive nyquist, screen+nyquist or silhouette+nyquist");
+  const std::string base = adaptive.substr(0, adaptive.find('+'));
+  if (camera.empty())
+    throw InputError(kCommandLine, "--camera", "--adaptive " + adaptive + " needs --camera eye=x,y,z");
+  s.rule = base == "silhouette" ? AdaptiveRule::Silhouette : AdaptiveRule::Screen;
   // Each rule has its own knob: the other one's is refused rather than silently ignored.
   if (s.rule == AdaptiveRule::Silhouette && pixels_per_segment_option && pixels_per_segment_option->count() > 0)
     throw InputError(kCommandLine, "--pixels-per-segment", "is the screen rule's; --adaptive silhouette takes --outline-tolerance");
@@ -376,7 +416,7 @@ void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
 TessSettings PatternOptions::settings(const char* command) const {
   TessSettings s;
   s.L = factor;
-  s.displace = displace_settings();
+  s.displace = displace.settings();
   check_tess_factor(command, factor);
   const bool fixed = !outer.empty() || !inner.empty();
   if (fixed && adaptive.given()) throw InputError(kCommandLine, "--outer", "cannot be combined with --adaptive");
@@ -401,7 +441,7 @@ TessSettings PatternOptions::settings(const char* command) const {
   if (adaptive.given()) adaptive.apply(s, command);
   if (silhouette_given()) {
     s.silhouette = parse_silhouette_option(silhouette);
-    if (s.silhouette.eye_from_camera && !adaptive.given())
+    if (s.silhouette.eye_from_camera && (!adaptive.given() || s.rule == AdaptiveRule::Nyquist))
       throw InputError(kCommandLine, "--silhouette", "'camera' takes the eye of --adaptive ... --camera, which is not given");
   }
   validate(s, kCommandLine);
@@ -440,6 +480,7 @@ std::optional<TessSettings> UnitPatternOptions::settings(const char* command, in
   p.adaptive = adaptive;
   p.silhouette = silhouette;
   p.silhouette_option = silhouette_option;
+  p.displace = displace;
   return p.settings(command);
 }
 

@@ -12,6 +12,15 @@ namespace tessim {
 
 enum class DisplaceKind { None, Sine, Noise };
 
+inline const char* to_string(DisplaceKind k) {
+  switch (k) {
+    case DisplaceKind::None: return "none";
+    case DisplaceKind::Sine: return "sine";
+    case DisplaceKind::Noise: return "noise";
+  }
+  return "?";
+}
+
 struct DisplaceSettings {
   DisplaceKind kind = DisplaceKind::None;
   double amplitude = 0.0;  // a, in the mesh's own units

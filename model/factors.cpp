@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <tuple>
 
 #include "model/base/error.hpp"
 #include "model/pattern.hpp"
@@ -27,6 +28,9 @@ std::string TessSettings::describe() const {
   } else if (source == FactorSource::Fixed) {
     s = partitioning_name(partitioning);
     s += " outer " + number(outer[0]) + "," + number(outer[1]) + "," + number(outer[2]) + " inner " + number(inner);
+  } else if (rule == AdaptiveRule::Nyquist) {
+    s = partitioning_name(partitioning);
+    s += " nyquist-adaptive (" + number(samples_per_wavelength) + " samples per wavelength)";
   } else {
     s = partitioning_name(partitioning);
     const bool by_outline = rule == AdaptiveRule::Silhouette;
@@ -35,6 +39,7 @@ std::string TessSettings::describe() const {
          std::to_string(camera.height) + ", " +
          (by_outline ? "outline tolerance " + number(outline_tolerance) + " pixels)"
                      : number(pixels_per_segment) + " pixels per segment)");
+    if (with_nyquist) s += " and nyquist (" + number(samples_per_wavelength) + " samples per wavelength)";
   }
   if (silhouette.enabled) {
     s += silhouette.eye_from_camera ? std::string(", silhouettes from the camera's eye")
@@ -80,6 +85,28 @@ float silhouette_edge_factor(const ScreenCamera& camera, double outline_toleranc
   return static_cast<float>(clamp_factor(kChordErrorFactor * std::sqrt(offset_pixels / outline_tolerance)));
 }
 
+float nyquist_edge_factor(const DisplaceSettings& displace, double samples_per_wavelength, const glm::dvec3& a,
+                          const glm::dvec3& b) {
+  if (!displace.enabled()) return 1.0f;
+  // The ends in lexicographic order: the same operations whichever patch asks.
+  const bool swap = std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z);
+  const glm::dvec3& p = swap ? b : a;
+  const glm::dvec3& q = swap ? a : b;
+  const glm::dvec3 chord = q - p;
+  const double length = glm::length(chord);
+  if (!(length > 0.0)) return 1.0f;
+  double cycles = displace.frequency * length;  // noise: one wavelength per lattice cell
+  if (displace.kind == DisplaceKind::Sine) {
+    const glm::dvec3 e = chord / length;
+    auto rate = [&](const glm::dvec3& x) {
+      const double r = glm::length(x);
+      return r > 0.0 ? std::abs(glm::dot(x, e)) / r : 1.0;
+    };
+    cycles *= std::min(1.0, std::max(rate(p), rate(q))) / (2.0 * M_PI);
+  }
+  return static_cast<float>(clamp_factor(samples_per_wavelength * cycles));
+}
+
 void bind_silhouette(TessSettings& s, const Mesh& mesh) {
   if (!s.uses_silhouette() || s.silhouette_field) return;
   const bool adaptive = s.kind == PatternKind::D3D11 && s.source == FactorSource::Adaptive;
@@ -105,7 +132,9 @@ PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::
   const glm::dvec3& p1 = mesh.positions[tri[1]];
   const glm::dvec3& p2 = mesh.positions[tri[2]];
   PatchFactors f;
-  if (settings.rule == AdaptiveRule::Silhouette) {
+  if (settings.rule == AdaptiveRule::Nyquist) {
+    f.outer = {1.0f, 1.0f, 1.0f};
+  } else if (settings.rule == AdaptiveRule::Silhouette) {
     if (!settings.silhouette_field) throw std::logic_error("patch_factors: the silhouette rule needs bind_silhouette()");
     const std::array<double, 3>& alpha = settings.silhouette_field->alpha(t);  // edges 01, 12, 20
     const std::array<double, 3>& deviation = settings.silhouette_field->deviation(t);
@@ -118,6 +147,13 @@ PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::
       return adaptive_edge_factor(settings.camera, settings.pixels_per_segment, a, b);
     };
     f.outer = {edge(p0, p2), edge(p0, p1), edge(p1, p2)};
+  }
+  if (settings.rule == AdaptiveRule::Nyquist || settings.with_nyquist) {
+    auto edge = [&](const glm::dvec3& a, const glm::dvec3& b) {
+      return nyquist_edge_factor(settings.displace, settings.samples_per_wavelength, a, b);
+    };
+    const std::array<float, 3> nyquist{edge(p0, p2), edge(p0, p1), edge(p1, p2)};
+    for (std::size_t i = 0; i < 3; ++i) f.outer[i] = std::max(f.outer[i], nyquist[i]);
   }
   f.inner = std::max({f.outer[0], f.outer[1], f.outer[2]});
   return f;
@@ -134,6 +170,14 @@ void validate(const TessSettings& s, const std::string& source) {
   }
   // Fixed factors are all valid: the tessellator clamps them, and one <= 0 or NaN culls.
   if (s.source == FactorSource::Fixed) return;
+  if (s.rule == AdaptiveRule::Nyquist || s.with_nyquist) {
+    if (!s.displace.enabled())
+      throw InputError(source, "--adaptive", "the nyquist rule samples a displacement: it needs --displace sine|noise");
+    if (!(s.samples_per_wavelength >= 1.0) || std::isinf(s.samples_per_wavelength))
+      throw InputError(source, "--samples-per-wavelength",
+                       number(s.samples_per_wavelength) + " is not a finite number >= 1");
+    if (s.rule == AdaptiveRule::Nyquist) return;  // no camera
+  }
   const ScreenCamera& c = s.camera;
   if (!is_finite(c.eye) || !is_finite(c.target))
     throw InputError(source, "--camera", "eye and target must be finite");

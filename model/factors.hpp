@@ -27,9 +27,10 @@ namespace tessim {
 
 enum class PatternKind { Uniform, D3D11 };
 enum class FactorSource { Fixed, Adaptive };
-// The adaptive rules (docs/patterns.md, Factors of a mesh): the edge's projected length alone, or
-// that length scaled by the edge's silhouetteness α (model/silhouette.hpp).
-enum class AdaptiveRule { Screen, Silhouette };
+// The adaptive rules (docs/patterns.md, Factors of a mesh): the edge's projected length alone,
+// that length scaled by the edge's silhouetteness α (model/silhouette.hpp), or enough segments to
+// sample the displacement's shortest wavelength along the edge (Nyquist, no camera).
+enum class AdaptiveRule { Screen, Silhouette, Nyquist };
 
 // A perspective camera for adaptive factors: eye, the point looked at, vertical field of view
 // and the viewport in pixels.
@@ -51,6 +52,10 @@ struct TessSettings {
   ScreenCamera camera;                // adaptive
   double pixels_per_segment = 16.0;   // adaptive, screen rule: target length of one edge segment on screen
   double outline_tolerance = 0.5;     // adaptive, silhouette rule: largest curve-to-segment distance, pixels
+  // Adaptive: the Nyquist rule as well as the screen or silhouette rule (the larger factor per
+  // edge); implied by rule == Nyquist.
+  bool with_nyquist = false;
+  double samples_per_wavelength = 4.0;  // the Nyquist rule's S
   // Silhouette blending of the control points (independent of the pattern). The silhouette rule
   // takes its α from it when it is on, else from the camera's eye with the default β.
   SilhouetteSettings silhouette;
@@ -92,6 +97,16 @@ float adaptive_edge_factor(const ScreenCamera& camera, double pixels_per_segment
 constexpr double kChordErrorFactor = 1.5;  // sqrt(2.25)
 float silhouette_edge_factor(const ScreenCamera& camera, double outline_tolerance, double alpha, double deviation,
                              const glm::dvec3& a, const glm::dvec3& b);
+
+// Nyquist rule (docs/patterns.md §9): enough segments that the displacement's shortest wavelength
+// along the edge's chord a-b gets at least `samples_per_wavelength` (S) points. Sine: the phase
+// f‖P‖ changes along the chord at the rate f·|d‖P‖/ds|, largest at an end (d‖P‖/ds is the cosine
+// between P and the chord, monotonic along a line), so F = S·f·ℓ·max(|â·e|, |b̂·e|) / 2π, ℓ the
+// chord's length, e its direction, â = a/‖a‖ (an end at the origin counts as 1). Noise: a
+// wavelength of one lattice cell, 1/f, in every direction, so F = S·f·ℓ. Clamped to 1..64; the
+// ends are taken in a fixed order, so both patches of an edge get the same factor bit for bit.
+float nyquist_edge_factor(const DisplaceSettings& displace, double samples_per_wavelength, const glm::dvec3& a,
+                          const glm::dvec3& b);
 
 // Resolves the silhouette's eye (the camera's for --silhouette camera and for the silhouette rule
 // without --silhouette) and builds the α of every edge of `mesh` into s.silhouette_field, unless

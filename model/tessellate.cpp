@@ -126,6 +126,21 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, int L, NormalMode mode, co
   return tessellate_mesh(mesh, settings, mode, sink);
 }
 
+PnPatch mesh_patch(const Mesh& mesh, std::size_t t, NormalMode mode, const MeshSilhouette* silhouette) {
+  const glm::uvec3& tri = mesh.triangles[t];
+  PnInput input;
+  std::array<VertexTags, 3> tags{};
+  for (int c = 0; c < 3; ++c) {
+    input.p[c] = mesh.positions[tri[c]];
+    input.n[c] = mesh.normals[tri[c]];
+    if (mesh.has_tags()) tags[c] = mesh.tags[tri[c]];
+  }
+  // A tagged mesh takes the scalar-tagged control points (plain PN where tags are neutral).
+  return silhouette       ? make_silhouette_patch(input, silhouette->patch(mesh, t), mode)
+         : mesh.has_tags() ? make_stpn_patch(input, tags, mode)
+                           : make_patch(input, mode);
+}
+
 namespace {
 
 // The patch of input triangle t: control points (scalar-tagged where the mesh has tags), then
@@ -139,20 +154,10 @@ namespace {
 void evaluate_patch(const Mesh& mesh, std::size_t t, const DomainPattern& domain, NormalMode mode,
                     const MeshSilhouette* silhouette, const DisplaceSettings& displacement, glm::dvec3* positions,
                     glm::dvec3* normals, TessellationSummary& summary) {
+  const PnPatch patch = mesh_patch(mesh, t, mode, silhouette);
   const glm::uvec3& tri = mesh.triangles[t];
-  PnInput input;
-  std::array<VertexTags, 3> tags{};
-  for (int c = 0; c < 3; ++c) {
-    input.p[c] = mesh.positions[tri[c]];
-    input.n[c] = mesh.normals[tri[c]];
-    if (mesh.has_tags()) tags[c] = mesh.tags[tri[c]];
-  }
-  // A tagged mesh takes the scalar-tagged control points (plain PN where tags are neutral).
-  const PnPatch patch = silhouette       ? make_silhouette_patch(input, silhouette->patch(mesh, t), mode)
-                        : mesh.has_tags() ? make_stpn_patch(input, tags, mode)
-                                          : make_patch(input, mode);
   summary.degenerate_edges += static_cast<std::uint64_t>(patch.degenerate_edges);
-  if (is_zero_area(input.p[0], input.p[1], input.p[2])) ++summary.degenerate_triangles;
+  if (is_zero_area(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]])) ++summary.degenerate_triangles;
   for (std::size_t i = 0; i < domain.basis.size(); ++i) {
     const PnVertex vertex = eval_bernstein(patch, domain.basis[i]);
     const DisplacedPoint point = displace(displacement, vertex.position, vertex.normal);

@@ -68,6 +68,8 @@ SimResult merge_chunks(std::span<const SimResult> parts, const UnitConfig& cfg) 
   r.config = cfg;
   r.cpg_cycles = first.cpg_cycles;
   r.scaling = first.scaling;
+  r.ge = first.ge;
+  r.displace = first.displace;
   r.unit.int_blocks = first.unit.int_blocks;
   std::vector<Timeline> timelines;
   timelines.reserve(parts.size());

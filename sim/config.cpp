@@ -54,7 +54,16 @@ void check_range(const std::string& source, const ParamSpec& p, const UnitConfig
 
 }  // namespace
 
-std::string to_string(CpgMapping m) { return m == CpgMapping::Dedicated ? "dedicated" : "gpe"; }
+std::string to_string(CpgMapping m) {
+  switch (m) {
+    case CpgMapping::Dedicated: return "dedicated";
+    case CpgMapping::Gpe: return "gpe";
+    case CpgMapping::Host: return "host";
+  }
+  return "?";
+}
+
+std::string to_string(Evaluation e) { return e == Evaluation::Unit ? "unit" : "gpe"; }
 
 void UnitConfig::validate(const std::string& source) const {
   for (const ParamSpec& p : unit_params()) check_range(source, p, *this);
@@ -70,6 +79,13 @@ void UnitConfig::validate(const std::string& source) const {
   if (cpg_mapping == CpgMapping::Gpe && !(cpg == CpgVariant{}))
     throw InputError(source, "cpg_lanes / cpg_digit_bits / cpg_copies / cpg_product_reg",
                      "describe the dedicated CPG; with cpg_mapping gpe the CPG takes cpg_gpe_cycles");
+  if (cpg_mapping == CpgMapping::Host && !(cpg == CpgVariant{}))
+    throw InputError(source, "cpg_lanes / cpg_digit_bits / cpg_copies / cpg_product_reg",
+                     "describe the dedicated CPG; with cpg_mapping host the host computes the control points");
+  if (cpg_mapping == CpgMapping::Host && evaluation != Evaluation::Gpe)
+    throw InputError(source, "cpg_mapping",
+                     "'host' sends control points, which only the geometry engine takes (evaluation gpe); the "
+                     "unit's input is the triangle");
   if (!hardware_supports(normals))
     throw InputError(source, "normals",
                      "'" + std::string(to_string(normals)) +

@@ -20,6 +20,15 @@ namespace tessim::sim {
 enum class CpgMapping {
   Dedicated,  // CPG is its own sequential datapath (the RTL's choice)
   Gpe,        // CPG runs on the geometry engine's spare cycles (Chung & Kim)
+  Host,       // the host computes the control points and sends them (Boubekeur & Schlick; evaluation gpe only)
+};
+
+// Where the patch is evaluated at each domain point: the unit's TE with its INT blocks, or the
+// geometry engine as a shader (Boubekeur & Schlick), fed by the DPG, with no TE and no INT block
+// (sim/ge_evaluation.hpp).
+enum class Evaluation {
+  Unit,
+  Gpe,
 };
 
 // What a chip is: a different value is a different RTL build (rtl/tess_pkg.sv parameters) or a
@@ -33,6 +42,7 @@ struct HardwareConfig {
   int vtx_fifo_depth = 2;    // output vertex FIFO between the TE and the geometry engine
   int cp_buffers = 2;        // control-point buffers: patches between the CPG's write and their last retirement
   CpgMapping cpg_mapping = CpgMapping::Dedicated;
+  Evaluation evaluation = Evaluation::Unit;
   CpgVariant cpg;            // datapath shape of the dedicated CPG (lanes, digit bits)
   // The CPG takes scalar tags (docs/stpn.md): the input stream carries them and tagged
   // triangles get scalar-tagged control points, for extra CPG cycles (cpg_tag_cycles).
@@ -46,6 +56,10 @@ struct EnvironmentConfig {
   double gpe_stall_prob = 0.0;  // chance that a ready geometry engine stalls a cycle anyway
   std::uint64_t seed = 1;    // seeds the geometry engine's random stalls
   int cpg_gpe_cycles = 64;   // geometry-engine cycles CPG needs per triangle when mapped there
+  // The GE's ALU for work it runs as a shader (evaluation gpe, displacement; sim/ge_cost.hpp).
+  int ge_alu_lanes = 4;      // scalar issue slots per cycle
+  int ge_sfu_cost = 4;       // slots of a special function (reciprocal square root, sine, cosine)
+  int ge_lookup_cost = 1;    // slots of a table read
   bool operator==(const EnvironmentConfig&) const = default;
 };
 
@@ -85,5 +99,6 @@ nlohmann::json parse_config_text(const std::string& text, const std::string& sou
 nlohmann::json to_json(const UnitConfig& cfg);
 
 std::string to_string(CpgMapping m);
+std::string to_string(Evaluation e);
 
 }  // namespace tessim::sim

@@ -35,7 +35,7 @@ std::string bottleneck(const SimResult& r) {
                   "GPE: waited for a vertex %.1f%% of cycles, TE blocked by GPE %.1f%% "
                   "(one vertex / %d cycles, busy %.1f%%)",
                   100 * ratio(r.gpe_waited, cycles), 100 * ratio(r.unit.te[TeClass::BlockedByGpe], cycles),
-                  c.gpe_cycles, 100 * ratio(r.gpe[GpeClass::Busy], cycles));
+                  r.ge.total(), 100 * ratio(r.gpe[GpeClass::Busy], cycles));
     return buf;
   }
   // Otherwise the unit delivered vertices late: the stall class of the TE that dominates the late

@@ -82,6 +82,9 @@ struct MeshPatterns {
   // The silhouette weights alpha the host sends with each triangle (tessim sim --silhouette), or
   // none (every alpha 1). Only a unit that takes alpha (alpha_bits > 0) reads them.
   const MeshSilhouette* silhouette = nullptr;
+  // Procedural displacement the geometry engine applies to every output vertex (tessim sim
+  // --displace): in float, after the unit, at the cost of sim/ge_cost.hpp per vertex.
+  DisplaceSettings displace;
 
   MeshPatterns() = default;
   MeshPatterns(std::span<const std::uint8_t> f) : factors(f) {}

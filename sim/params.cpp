@@ -21,7 +21,8 @@ namespace {
 using nlohmann::json;
 
 constexpr std::array<const char*, 4> kNormalChoices{"quadratic", "reflect", "linear", "derivative"};
-constexpr std::array<const char*, 2> kCpgChoices{"dedicated", "gpe"};
+constexpr std::array<const char*, 3> kCpgChoices{"dedicated", "gpe", "host"};
+constexpr std::array<const char*, 2> kEvaluationChoices{"unit", "gpe"};
 
 // get/set of a plain field of UnitConfig (FIELD is an expression on `c`).
 #define TESSIM_PARAM_FIELD(FIELD)                                                  \
@@ -34,7 +35,7 @@ constexpr auto E = ParamKind::Environment;
 constexpr auto W = ParamKind::Workload;
 constexpr auto I = ParamType::Int;
 
-const std::array<ParamSpec, 22> kParams{{
+const std::array<ParamSpec, 26> kParams{{
     {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
      "tessellation factor: segments per edge, the same for every triangle of a run",
      TESSIM_PARAM_FIELD(tess_factor)},
@@ -58,10 +59,19 @@ const std::array<ParamSpec, 22> kParams{{
      "seed of the geometry engine's random stalls (cosim: also of the RTL's X values)",
      TESSIM_PARAM_FIELD(seed)},
     {"cpg_mapping", "--cpg-mapping", "--cpg", nullptr, "", H, ParamType::Enum, 0, 0, kCpgChoices, "",
-     "CPG as its own sequential datapath (dedicated, the RTL's) or on the geometry engine's spare cycles",
+     "CPG as its own sequential datapath (dedicated, the RTL's), on the geometry engine's spare cycles (gpe), "
+     "or control points computed by the host and sent instead of the triangle (host: evaluation gpe only)",
      [](const UnitConfig& c) -> json { return to_string(c.cpg_mapping); },
      [](UnitConfig& c, const json& v) {
-       c.cpg_mapping = v.get<std::string>() == "gpe" ? CpgMapping::Gpe : CpgMapping::Dedicated;
+       const std::string m = v.get<std::string>();
+       c.cpg_mapping = m == "gpe" ? CpgMapping::Gpe : m == "host" ? CpgMapping::Host : CpgMapping::Dedicated;
+     }},
+    {"evaluation", "--evaluation", "", nullptr, "", H, ParamType::Enum, 0, 0, kEvaluationChoices, "",
+     "where each domain point is evaluated: the unit's TE and INT blocks (unit, the RTL's), or the geometry "
+     "engine as a shader fed by the DPG, without TE or INT blocks (gpe; its ALU: ge_alu_lanes, ge_sfu_cost)",
+     [](const UnitConfig& c) -> json { return to_string(c.evaluation); },
+     [](UnitConfig& c, const json& v) {
+       c.evaluation = v.get<std::string>() == "gpe" ? Evaluation::Gpe : Evaluation::Unit;
      }},
     {"cpg_lanes", "--cpg-lanes", "", "CpgLanes", "Ec", H, I, 1, 3, {}, "edges",
      "edge lanes of the dedicated CPG: 1 computes the three edges in turn, 3 all at once",
@@ -83,6 +93,15 @@ const std::array<ParamSpec, 22> kParams{{
     {"cpg_gpe_cycles", "--cpg-gpe-cycles", "", nullptr, "", E, I, 1, kMaxCycles, {}, "cycles",
      "geometry-engine cycles the CPG needs per triangle when mapped there (cpg_mapping gpe)",
      TESSIM_PARAM_FIELD(cpg_gpe_cycles)},
+    {"ge_alu_lanes", "--ge-alu-lanes", "", nullptr, "", E, I, 1, 256, {}, "slots",
+     "scalar operations the geometry engine's ALU issues per cycle for shader work (evaluation gpe, --displace)",
+     TESSIM_PARAM_FIELD(ge_alu_lanes)},
+    {"ge_sfu_cost", "--ge-sfu-cost", "", nullptr, "", E, I, 1, 64, {}, "slots",
+     "issue slots of a special function on the geometry engine (reciprocal square root, sine, cosine)",
+     TESSIM_PARAM_FIELD(ge_sfu_cost)},
+    {"ge_lookup_cost", "--ge-lookup-cost", "", nullptr, "", E, I, 1, 64, {}, "slots",
+     "issue slots of a table read on the geometry engine (the noise's permutation and gradients)",
+     TESSIM_PARAM_FIELD(ge_lookup_cost)},
     {"coord_int_bits", "--coord-int-bits", "", "CoordIntBits", "I", H, I, 1, 8, {}, "bits",
      "integer bits of a coordinate, sign excluded (width W = 1 + I + F <= 32)",
      TESSIM_PARAM_FIELD(format.coord_int_bits)},

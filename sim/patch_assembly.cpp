@@ -26,13 +26,19 @@ std::span<const std::uint32_t> PatchAssembly::indices(const TriangleFx& tri) {
 }
 
 void PatchAssembly::add(const VertexFx& v, int index, int L, int vertices) {
-  positions_[static_cast<std::size_t>(index)] = position_from_fixed(v.pos, scaling_, format_);
-  normals_[static_cast<std::size_t>(index)] = normal_from_fixed(v.nrm, format_);
-  if (!v.last) return;
+  add(position_from_fixed(v.pos, scaling_, format_), normal_from_fixed(v.nrm, format_), v.id, v.last, index, L,
+      vertices);
+}
+
+void PatchAssembly::add(const glm::dvec3& position, const glm::dvec3& normal, std::uint32_t id, bool last, int index,
+                        int L, int vertices) {
+  positions_[static_cast<std::size_t>(index)] = position;
+  normals_[static_cast<std::size_t>(index)] = normal;
+  if (!last) return;
   const auto n = static_cast<std::size_t>(vertices);
   const std::span<const std::uint32_t> triangles =
-      L == 0 ? indices(*source_.triangle(v.id)) : std::span<const std::uint32_t>{};
-  on_patch_(PatchOut{v.id, L, {positions_.data(), n}, {normals_.data(), n}, triangles});
+      L == 0 ? indices(*source_.triangle(id)) : std::span<const std::uint32_t>{};
+  on_patch_(PatchOut{id, L, {positions_.data(), n}, {normals_.data(), n}, triangles});
 }
 
 }  // namespace tessim::sim

@@ -30,6 +30,10 @@ class PatchAssembly {
 
   // Vertex `index` of a patch of `vertices` vertices and uniform factor L (0: D3D11).
   void add(const VertexFx& v, int index, int L, int vertices);
+  // The same for a vertex already in float in the mesh's coordinates (evaluation gpe), of the
+  // patch of triangle `id`; `last`: the patch's last vertex.
+  void add(const glm::dvec3& position, const glm::dvec3& normal, std::uint32_t id, bool last, int index, int L,
+           int vertices);
 
  private:
   // The triangles of a D3D11 pattern, built once per distinct set of factors (an adaptive mesh

@@ -1,11 +1,15 @@
 #include "sim/simulate.hpp"
 
 #include <chrono>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "model/base/error.hpp"
+#include "model/tessellate.hpp"
+#include "sim/ge_evaluation.hpp"
 #include "sim/late_intervals.hpp"
 #include "sim/output_check.hpp"
 #include "sim/patch_assembly.hpp"
@@ -14,6 +18,113 @@
 #include "sim/watchdog.hpp"
 
 namespace tessim::sim {
+
+std::function<void(const PatchOut&)> displaced(std::function<void(const PatchOut&)> on_patch,
+                                               const DisplaceSettings& displace) {
+  // The buffers live as long as the returned function: no allocation per patch once they have
+  // grown to the largest patch.
+  auto positions = std::make_shared<std::vector<glm::dvec3>>();
+  auto normals = std::make_shared<std::vector<glm::dvec3>>();
+  return [on_patch = std::move(on_patch), displace, positions, normals](const PatchOut& p) {
+    positions->assign(p.positions.begin(), p.positions.end());
+    normals->assign(p.normals.begin(), p.normals.end());
+    for (std::size_t i = 0; i < positions->size(); ++i) {
+      glm::dvec3& n = (*normals)[i];
+      // A vanished normal (counted in warnings.zero_normals) gives no direction: the point stays.
+      if (n == glm::dvec3(0.0)) continue;
+      const DisplacedPoint d = tessim::displace(displace, (*positions)[i], n);
+      (*positions)[i] = d.position;
+      n = d.normal;
+    }
+    on_patch(PatchOut{p.triangle, p.L, *positions, *normals, p.indices});
+  };
+}
+
+namespace {
+
+// The float patch the GE evaluates from a control-point buffer the CPG filled: dequantized, back in
+// the mesh's coordinates (the normal net is stored at twice its value; a uniform scale leaves the
+// normals' directions).
+PnPatch patch_from_fixed(const ControlPointsFx& cp, NormalMode mode, const NumberFormat& fmt, const HostScaling& scaling) {
+  PnPatch p;
+  p.mode = mode;
+  for (std::size_t i = 0; i < p.b.size(); ++i) p.b[i] = scaling.from_unit(dequantize(cp.b[i], fmt));
+  for (std::size_t i = 0; i < p.n_bern.size(); ++i) p.n_bern[i] = 0.5 * dequantize(cp.n[i], fmt);
+  // Linear mode: the corners of the net hold N1, N2, N3 as they are.
+  constexpr std::array<int, 3> kCorners{net_index(0, 0, 2), net_index(2, 0, 2), net_index(0, 2, 2)};
+  for (std::size_t c = 0; c < 3; ++c) p.n_corner[c] = dequantize(cp.n[static_cast<std::size_t>(kCorners[c])], fmt);
+  return p;
+}
+
+// evaluation gpe: the DPG's points evaluated by the geometry engine (sim/ge_evaluation.hpp), cycle
+// by cycle. `r` comes with what simulate_range set up.
+SimResult simulate_ge_evaluation(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
+                                 const SimHooks& hooks, const MeshPatterns& patterns, SimResult r,
+                                 std::chrono::steady_clock::time_point t0) {
+  if (!hooks.observers.empty())
+    throw InputError("configuration", "evaluation", "gpe has no TE to trace or schedule (--trace, --schedule)");
+  if (hooks.measure_errors || hooks.on_vertex)
+    throw InputError("configuration", "evaluation",
+                     "gpe evaluates in float on the geometry engine: --errors measures the unit's fixed-point output");
+  const UnitConfig run_cfg = with_ge_cost(cfg, r.ge);
+  GeEvaluationUnit unit(cfg);
+  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, patterns,
+                          cfg.cpg_tags && cfg.cpg_mapping == CpgMapping::Dedicated, first, end);
+  BasicTestbench<MeshSource> tb(source, run_cfg);
+  r.cpg_cycles = unit.cpg_cycles();
+  r.factors = workload_factors(source);
+  const std::uint64_t total = source.vertices();
+  std::optional<PatchAssembly> patches;
+  const std::function<void(const PatchOut&)> on_patch =
+      patterns.displace.enabled() && hooks.on_patch ? displaced(hooks.on_patch, patterns.displace) : hooks.on_patch;
+  if (on_patch) patches.emplace(source, r.scaling, cfg.format, cfg.tess_factor, on_patch);
+  Watchdog watchdog(run_cfg, unit.cpg_cycles());
+  // The host's control points (cpg_mapping host): the float reference's, once per patch.
+  PnPatch host_patch;
+  std::uint32_t host_patch_id = UINT32_MAX;
+  std::uint64_t accepted = 0, cycle = 0;
+  while (accepted < total) {
+    const UnitInputs& in = tb.inputs(unit);
+    const GpeCycle& g = tb.gpe_cycle();
+    if (g.accepted) {
+      const GePoint& v = unit.vtx();
+      const ControlPointBuffer::Entry& e = unit.entry(v.buffer);
+      if (patches) {
+        const double one = static_cast<double>(cfg.format.bary_one());
+        const double u = static_cast<double>(v.point.u) / one, w_v = static_cast<double>(v.point.v) / one;
+        PnVertex out;
+        if (cfg.cpg_mapping == CpgMapping::Host) {
+          if (host_patch_id != v.id) {
+            host_patch = mesh_patch(mesh, v.id, cfg.normals, patterns.silhouette);
+            host_patch_id = v.id;
+          }
+          out = eval_bernstein(host_patch, u, w_v);
+        } else {
+          out = eval_bernstein(patch_from_fixed(e.cp, cfg.normals, cfg.format, r.scaling), u, w_v);
+        }
+        const bool uniform = e.pattern == TriPattern::uniform;
+        patches->add(out.position, out.normal, v.id, v.point.last, v.point.index, uniform ? e.L : 0,
+                     uniform ? pattern_vertex_count(e.L) : e.d3d11.point_count);
+      }
+      if (v.point.last && hooks.vertices_done)
+        hooks.vertices_done->fetch_add(static_cast<std::uint64_t>(v.point.index + 1), std::memory_order_relaxed);
+      if (v.point.last && hooks.cancel && hooks.cancel->load(std::memory_order_relaxed)) throw SimCancelled();
+      ++accepted;
+      watchdog.progress(cycle);
+    }
+    unit.tick(in);
+    ++cycle;
+    watchdog.check(cycle);
+  }
+  // No timeline: its buckets follow the TE's classes, and there is no TE.
+  r.unit = unit.stats();
+  r.gpe = tb.gpe().stats();
+  r.cpg_tag_cycles = unit.cpg_tag_cycles();
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace
 
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks, MeshPatterns patterns) {
   return simulate_range(mesh, cfg, 0, mesh.triangle_count(), hooks, patterns);
@@ -39,10 +150,16 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   r.config = cfg;
   r.triangles = end - first;
   r.scaling = host_scaling(mesh);
+  validate(patterns.displace, "displacement");
+  r.displace = patterns.displace;
+  r.ge = ge_vertex_cost(cfg, patterns.displace.kind);
+  // The geometry engine as the run sees it: K plus the shader work it does per vertex.
+  if (cfg.evaluation == Evaluation::Gpe) return simulate_ge_evaluation(mesh, cfg, first, end, hooks, patterns, r, t0);
+  const UnitConfig run_cfg = with_ge_cost(cfg, r.ge);
 
   Unit unit(cfg);
   const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, patterns, cfg.cpg_tags, first, end);
-  BasicTestbench<MeshSource> tb(source, cfg);
+  BasicTestbench<MeshSource> tb(source, run_cfg);
   r.cpg_cycles = unit.cpg_cycles();
   r.factors = workload_factors(source);
   const std::uint64_t total = source.vertices();
@@ -50,7 +167,9 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   // The run's concerns besides stepping the unit, each fed what it watches.
   OutputCheck output(mesh, source, cfg.format, patterns.d3d11 != nullptr);
   std::optional<PatchAssembly> patches;
-  if (hooks.on_patch) patches.emplace(source, r.scaling, cfg.format, cfg.tess_factor, hooks.on_patch);
+  const std::function<void(const PatchOut&)> on_patch =
+      patterns.displace.enabled() && hooks.on_patch ? displaced(hooks.on_patch, patterns.displace) : hooks.on_patch;
+  if (on_patch) patches.emplace(source, r.scaling, cfg.format, cfg.tess_factor, on_patch);
   std::optional<MeshErrors> mesh_errors;
   std::optional<ArithmeticCheck> arithmetic;
   if (hooks.measure_errors) {
@@ -59,7 +178,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   }
   LateIntervals late;
   TimelineRecorder timeline(r.timeline);
-  Watchdog watchdog(cfg, unit.cpg_cycles());
+  Watchdog watchdog(run_cfg, unit.cpg_cycles());
   std::vector<CycleObserver*> observers = hooks.observers;
 
   std::uint64_t accepted = 0;

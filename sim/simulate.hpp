@@ -5,12 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "model/mesh.hpp"
 #include "sim/config.hpp"
+#include "sim/ge_cost.hpp"
 #include "sim/gpe.hpp"
 #include "sim/hooks.hpp"
 #include "sim/host.hpp"
@@ -32,6 +34,10 @@ struct SimErrors {
 struct SimResult {
   std::string mesh;              // source of the mesh
   UnitConfig config;
+  // The geometry engine's cycles per vertex by part (K; evaluation gpe; --displace), and the
+  // displacement it applied to every output vertex.
+  GeVertexCost ge;
+  DisplaceSettings displace;
   std::uint64_t triangles = 0;   // input triangles of the mesh
   int cpg_cycles = 0;            // C of the configuration (doc §5)
   std::uint64_t cpg_tag_cycles = 0;  // CPG cycles scalar tags added over the run (cpg_tags)
@@ -61,6 +67,12 @@ struct SimResult {
 // SimResult::errors, not thrown: it is a finding about the widths, not bad input.
 // `patterns`: one uniform factor per triangle of the mesh, or the D3D11 pattern with fixed or
 // adaptive factors (model/factors.hpp); empty: cfg.tess_factor for every triangle.
+// `on_patch` behind the geometry engine's displacement: every point of a patch displaced in float
+// (model/displace.hpp) from the unit's output converted back into the mesh's coordinates; a vertex
+// whose normal vanished keeps its point.
+std::function<void(const PatchOut&)> displaced(std::function<void(const PatchOut&)> on_patch,
+                                               const DisplaceSettings& displace);
+
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks = {},
                    MeshPatterns patterns = {});
 // The same for the triangles [first, end) of the mesh alone, on a unit fresh from reset (a chunk

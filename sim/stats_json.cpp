@@ -12,6 +12,7 @@
 #include "sim/analytic.hpp"
 #include "sim/blocks/counter_registry.hpp"
 #include "sim/chunked.hpp"
+#include "sim/ge_cost.hpp"
 #include "sim/unit_io.hpp"
 #include "sim/version.hpp"
 
@@ -49,9 +50,10 @@ nlohmann::json workload_json(const WorkloadFactors& w, std::uint64_t triangles) 
 nlohmann::json analytic_of(const SimResult& r) {
   // Scalar tags make C vary per triangle: the prediction takes the mean, rounded.
   const int cpg_c = r.cpg_cycles + static_cast<int>(std::lround(ratio(r.cpg_tag_cycles, r.triangles)));
-  if (r.factors.uniform) return analytic_json(predict(r.config, cpg_c), r.config, r.triangles);
-  const AnalyticPrediction p = predict(r.config, cpg_c, ratio(r.factors.vertices, r.triangles));
-  nlohmann::json j = analytic_json(p, r.config, r.triangles);
+  const UnitConfig cfg = with_ge_cost(r.config, r.ge);  // K with the GE's shader work
+  if (r.factors.uniform) return analytic_json(predict(cfg, cpg_c), cfg, r.triangles);
+  const AnalyticPrediction p = predict(cfg, cpg_c, ratio(r.factors.vertices, r.triangles));
+  nlohmann::json j = analytic_json(p, cfg, r.triangles);
   const VaryingWorkloadBounds b = varying_bounds(p, r.factors.patches_with_vertices);
   const auto v = static_cast<double>(r.factors.vertices);
   j["varying"] = {{"no_buffer_cycles", b.no_buffer_cycles},
@@ -104,6 +106,12 @@ nlohmann::json stats_units() {
       {"analytic.varying.no_buffer_cycles_per_vertex", "cycles/vertex"},
       {"analytic.varying.full_buffer_cycles_per_vertex", "cycles/vertex"},
       {"wall_seconds", "seconds (wall clock of the simulation)"},
+      {"ge.cycles_per_vertex.base", "cycles/vertex (K)"},
+      {"ge.cycles_per_vertex.evaluation", "cycles/vertex"},
+      {"ge.cycles_per_vertex.displacement", "cycles/vertex"},
+      {"ge.cycles_per_vertex.total", "cycles/vertex"},
+      {"ge.displacement.amplitude", "mesh units"},
+      {"ge.displacement.frequency", "radians per mesh unit"},
   };
   // Every counter of the registry (sim/blocks/counter_registry.hpp) where the JSON has it: the
   // run's counts at the top, an INT block's in int.blocks[], the classes in their block's object,
@@ -196,6 +204,11 @@ nlohmann::json stats_json(const SimResult& r) {
       {"analytic", analytic_of(r)},
       {"wall_seconds", r.wall_seconds},
       {"timeline", to_json(r.timeline)},
+      {"ge",
+       {{"cycles_per_vertex",
+         {{"base", r.ge.base}, {"evaluation", r.ge.evaluation}, {"displacement", r.ge.displacement}, {"total", r.ge.total()}}},
+        {"displacement",
+         {{"kind", to_string(r.displace.kind)}, {"amplitude", r.displace.amplitude}, {"frequency", r.displace.frequency}}}}},
   };
   for (std::size_t row = first_row(CounterBlock::Run); row < first_row(CounterBlock::Run) + row_count(CounterBlock::Run); ++row)
     j[kCounterRegistry[row].key] = counter_value(u, row);
@@ -205,7 +218,7 @@ nlohmann::json stats_json(const SimResult& r) {
     j["errors"]["arithmetic"] = to_json(r.errors->arithmetic);
   }
   if (!r.chunk_cycles.empty()) {
-    const ChunkBoundaryBound b = chunk_boundary_bound(r.config, r.factors.uniform);
+    const ChunkBoundaryBound b = chunk_boundary_bound(with_ge_cost(r.config, r.ge), r.factors.uniform);
     const std::uint64_t boundaries = r.chunk_cycles.size() - 1;
     j["chunks"] = {{"count", r.chunk_cycles.size()},
                    {"cycles", r.chunk_cycles},

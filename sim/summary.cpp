@@ -49,6 +49,14 @@ std::string summary(const SimResult& r) {
                 c.int_blocks, c.int_latency, c.te_contexts, c.tri_fifo_depth, c.vtx_fifo_depth, c.cp_buffers,
                 c.format.coord_int_bits, c.format.coord_frac_bits, c.format.coord_width(), c.format.bary_bits,
                 to_string(c.cpg_mapping).c_str(), r.cpg_cycles);
+  if (c.evaluation == Evaluation::Gpe) {
+    // No TE and no INT blocks: the head of the line says so instead of N, Λ and V.
+    std::snprintf(buf, sizeof buf,
+                  "unit     evaluation on the geometry engine (no TE, no INT blocks; the TE line counts the DPG), "
+                  "FIFOs tri %d / vtx %d, %d CP buffers, Q%d.%d (W=%d) B=%d, CPG %s: %d cycles/triangle",
+                  c.tri_fifo_depth, c.vtx_fifo_depth, c.cp_buffers, c.format.coord_int_bits, c.format.coord_frac_bits,
+                  c.format.coord_width(), c.format.bary_bits, to_string(c.cpg_mapping).c_str(), r.cpg_cycles);
+  }
   s << buf;
   if (c.cpg.copies > 1) s << " on each of " << c.cpg.copies << " copies";
   if (c.cpg_tags)
@@ -86,6 +94,18 @@ std::string summary(const SimResult& r) {
                 std::string(to_string(c.normals)).c_str(), c.gpe_cycles, c.gpe_stall_prob,
                 static_cast<unsigned long long>(c.seed));
   s << buf;
+  if (r.ge.total() != r.ge.base) {
+    std::snprintf(buf, sizeof buf, "GE       %d cycles/vertex: K=%d", r.ge.total(), r.ge.base);
+    s << buf;
+    if (r.ge.evaluation) s << " + " << r.ge.evaluation << " evaluating the patch (evaluation gpe)";
+    if (r.ge.displacement) {
+      std::snprintf(buf, sizeof buf, " + %d displacing (%s, amplitude %g, frequency %g)", r.ge.displacement,
+                    to_string(r.displace.kind), r.displace.amplitude, r.displace.frequency);
+      s << buf;
+    }
+    std::snprintf(buf, sizeof buf, " on %d ALU slots/cycle (docs/microarchitecture.md §12)\n", c.ge_alu_lanes);
+    s << buf;
+  }
   std::snprintf(buf, sizeof buf,
                 "result   %llu cycles  %llu vertices  %.3f cycles/vertex  %.4f vertices/cycle\n",
                 static_cast<unsigned long long>(n), static_cast<unsigned long long>(u.vertices_out),
