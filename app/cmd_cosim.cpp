@@ -74,6 +74,10 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
                        "no RTL build '" + a.variant + "'; the RTL builds are " + known_builds());
     return a.variant;
   }
+  if (cfg.evaluation != sim::Evaluation::Unit)
+    throw InputError(flags.config_file().empty() || flags.overrides().contains("evaluation") ? "command line"
+                                                                                          : flags.config_file(),
+                     "evaluation", "the RTL is the unit with its TE (evaluation unit); gpe exists in the cycle model only");
   if (const std::optional<std::string> v = rtl::find_rtl_variant(cfg.hardware(), a.verif)) return *v;
   const std::string source = flags.config_file().empty() || flags.overrides().contains("int_blocks")
                                  ? "command line"
