@@ -272,7 +272,9 @@ void run_render(const RenderArgs& args) {
     throw InputError("command line", "--color-max", "must be a positive finite number");
   if (colour == ColourMode::Silhouette && !settings.uses_silhouette())
     throw InputError("command line", "--color", "silhouette needs --silhouette or --adaptive silhouette");
-  const bool adaptive_view = settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive;
+  // An adaptive rule with a camera takes the picture from it; the Nyquist rule alone has none.
+  const bool adaptive_view = settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive &&
+                             settings.rule != AdaptiveRule::Nyquist;
   std::optional<ScreenCamera> view_camera;
   if (!args.view_camera.empty()) {
     if (adaptive_view)
