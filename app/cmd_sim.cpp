@@ -147,6 +147,15 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
                        "'" + a.trace_window + "' is not START:END (cycles, START <= END)");
     trace_window = {from, to + 1};
   }
+  if (cfg.evaluation == sim::Evaluation::Gpe) {
+    // The GE evaluates in float and there is no TE: nothing to trace, schedule or check in fixed point.
+    const char* refused = !a.trace.empty() ? "--trace" : a.schedule ? "--schedule" : a.errors ? "--errors" : nullptr;
+    if (refused)
+      throw InputError("command line", refused,
+                       std::string("evaluation gpe has no TE: ") +
+                           (a.errors ? "the GE evaluates in float, and --errors measures the unit's fixed-point output"
+                                     : "nothing to trace or schedule cycle by cycle"));
+  }
   check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}});
   std::optional<TessSettings> pattern = a.pattern.settings("sim", cfg.tess_factor);
   if (pattern && cfg.format.bary_bits < 16)

@@ -340,7 +340,7 @@ void AdaptiveOptions::check_given_alone() const {
   if (outline_tolerance_option && outline_tolerance_option->count() > 0)
     throw InputError(kCommandLine, "--outline-tolerance", "needs --adaptive silhouette");
   if (samples_per_wavelength_option && samples_per_wavelength_option->count() > 0)
-    throw InputError(kCommandLine, "--samples-per-wavelength", "needs --adaptive nyquist");
+    throw InputError(kCommandLine, "--samples-per-wavelength", "needs --adaptive nyquist, screen+nyquist or silhouette+nyquist");
 }
 
 void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
@@ -359,9 +359,13 @@ void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
     if (viewport_option && viewport_option->count() > 0)
       throw InputError(kCommandLine, "--viewport", "--adaptive nyquist takes no camera (screen+nyquist does)");
     if (pixels_per_segment_option && pixels_per_segment_option->count() > 0)
-      throw InputError(kCommandLine, "--pixels-per-segment", "is the screen rule's (screen+nyquist)");
+      throw InputError(kCommandLine, "--pixels-per-segment",
+                       "is the screen rule's; --adaptive nyquist alone takes --samples-per-wavelength only (the larger "
+                       "of both: screen+nyquist)");
     if (outline_tolerance_option && outline_tolerance_option->count() > 0)
-      throw InputError(kCommandLine, "--outline-tolerance", "is the silhouette rule's (silhouette+nyquist)");
+      throw InputError(kCommandLine, "--outline-tolerance",
+                       "is the silhouette rule's; --adaptive nyquist alone takes --samples-per-wavelength only (the "
+                       "larger of both: silhouette+nyquist)");
     return;
   }
   s.with_nyquist = adaptive.ends_with("+nyquist");

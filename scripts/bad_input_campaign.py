@@ -331,6 +331,20 @@ def factor_cases(mesh: str) -> list[Case]:
                       ["--displace", "sine", "--amplitude", "1e300", "--frequency", "1e300"],
                       ["--displace", "noise", "--amplitude", "1", "--frequency", "-1"]):
             cases.append(Case("displace", cmd + extra))
+    # The Nyquist rule (docs/patterns.md §9): without a displacement to sample, with a camera it
+    # does not take (or without the one screen+nyquist needs), --samples-per-wavelength without a
+    # nyquist rule or below 1 or NaN.
+    sine = ["--displace", "sine", "--amplitude", "0.02", "--frequency", "60"]
+    for cmd in (["tessellate", mesh, "-o", "{work}/o.ply"], ["render", mesh, "-o", "{work}/o.png"],
+                ["sim", mesh, "-o", "{work}/o.ply"]):
+        for extra in (["--adaptive", "nyquist"],
+                      ["--adaptive", "nyquist", "--camera", "eye=0,0,3"] + sine,
+                      ["--samples-per-wavelength", "8"] + sine,
+                      ["--adaptive", "screen", "--samples-per-wavelength", "8", "--camera", "eye=0,0,3"] + sine,
+                      ["--adaptive", "nyquist", "--samples-per-wavelength", "0.5"] + sine,
+                      ["--adaptive", "nyquist", "--samples-per-wavelength", "nan"] + sine,
+                      ["--adaptive", "screen+nyquist"] + sine):
+            cases.append(Case("displace", cmd + extra))
     cases.append(Case("silhouette", ["cosim", "--random", "4", "--variant", "n3_lat3", "--silhouette", "eye=0,0,5"]))
     return cases
 
@@ -363,6 +377,19 @@ def output_cases(mesh: str) -> list[Case]:
     # A failing later stage must not leave the earlier outputs
     cases.append(Case("output", ["sim", mesh, "-L", "2", "-o", "{work}/o.ply", "--stats", "{work}/missing/s.json"]))
     return cases
+
+
+def ge_cases(mesh: str) -> list[Case]:
+    """The geometry engine as a shader machine (docs/microarchitecture.md §12): evaluation gpe has
+    no TE to trace, host control points need evaluation gpe, ALU lanes and special-function cost
+    out of range, and the RTL has no evaluation gpe."""
+    return [
+        Case("ge", ["sim", mesh, "--evaluation", "gpe", "--trace", "{work}/t.json", "-o", "{work}/o.ply"]),
+        Case("ge", ["sim", mesh, "--cpg-mapping", "host", "-o", "{work}/o.ply"]),
+        Case("ge", ["sim", mesh, "--ge-alu-lanes", "0", "-o", "{work}/o.ply"]),
+        Case("ge", ["sim", mesh, "--ge-sfu-cost", "65", "-o", "{work}/o.ply"]),
+        Case("ge", ["cosim", mesh, "--evaluation", "gpe"]),
+    ]
 
 
 def misc_cases(mesh: str) -> list[Case]:
@@ -437,7 +464,7 @@ def build_cases(data: Path) -> list[Case]:
         cases.append(Case("image", ["report", "{data}/sample.json", "--image", "{data}/images/" + name, "-o", "{work}/r.html"]))
     for special in ("/dev/zero", "{data}/fifo.json", "{data}", "{data}/does_not_exist.png"):
         cases.append(Case("image", ["report", "{data}/sample.json", "--image", special, "-o", "{work}/r.html"], timeout=20))
-    cases += option_cases(mesh) + factor_cases(mesh) + output_cases(mesh) + misc_cases(mesh)
+    cases += option_cases(mesh) + factor_cases(mesh) + output_cases(mesh) + ge_cases(mesh) + misc_cases(mesh)
     return cases
 
 

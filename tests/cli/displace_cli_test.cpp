@@ -1,7 +1,11 @@
 // `tessellate|render --displace sine --amplitude A --frequency F` (docs/mathematics.md §12): the
 // per-patch output is the displaced surface of the model, and bad settings are input errors with
-// nothing written.
+// nothing written. `--adaptive nyquist|screen+nyquist|silhouette+nyquist` and
+// `--samples-per-wavelength S` (docs/patterns.md §9): factors from the displacement's wavelength,
+// the same vertices from `tessellate` and `sim`, and their misuse refused.
+#include <cstdint>
 #include <filesystem>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -77,6 +81,110 @@ TEST(DisplaceCli, BadSettingsAreInputErrors) {
     EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
     EXPECT_FALSE(fs::exists(out + ".png"));
+  }
+}
+
+// The count in "<file>: P patches, V vertices, ..." (tessellate) or "result ... V vertices" (sim).
+std::uint64_t printed_vertices(const std::string& out) {
+  std::smatch m;
+  if (!std::regex_search(out, m, std::regex("([0-9]+) +vertices"))) return 0;
+  return std::stoull(m[1].str());
+}
+
+const std::vector<std::string> kSine{"--displace", "sine", "--amplitude", "0.02", "--frequency", "60"};
+
+std::vector<std::string> with_sine(std::vector<std::string> args) {
+  args.insert(args.end(), kSine.begin(), kSine.end());
+  return args;
+}
+
+TEST(DisplaceCli, NyquistFactorsFollowTheSamplesPerWavelength) {
+  TempDir dir;
+  const fs::path out4 = dir.path() / "n4.ply", out8 = dir.path() / "n8.ply";
+  const auto r4 = run_tessim(with_sine({"tessellate", kWuson, "--adaptive", "nyquist", "-o", out4.string()}), dir.path());
+  ASSERT_EQ(r4.status, 0) << r4.err;
+  EXPECT_NE(r4.out.find("nyquist-adaptive (4 samples per wavelength)"), std::string::npos) << r4.out;
+  const auto r8 = run_tessim(
+      with_sine({"tessellate", kWuson, "--adaptive", "nyquist", "--samples-per-wavelength", "8", "-o", out8.string()}),
+      dir.path());
+  ASSERT_EQ(r8.status, 0) << r8.err;
+  EXPECT_NE(r8.out.find("nyquist-adaptive (8 samples per wavelength)"), std::string::npos) << r8.out;
+  const std::uint64_t v4 = printed_vertices(r4.out), v8 = printed_vertices(r8.out);
+  EXPECT_GT(v4, 0u) << r4.out;
+  EXPECT_GT(v8, v4) << r8.out;
+  // The written meshes: twice the samples, more points (the reader welds shared ones).
+  EXPECT_GT(load_mesh(out8).vertex_count(), load_mesh(out4).vertex_count());
+  // The factors the model computes (model/factors.hpp), counted the writer's way.
+  TessSettings s;
+  s.kind = PatternKind::D3D11;
+  s.source = FactorSource::Adaptive;
+  s.rule = AdaptiveRule::Nyquist;
+  s.displace = {DisplaceKind::Sine, 0.02, 60.0};
+  const Mesh mesh = load_mesh(kWuson);
+  PatternCache cache(s);
+  EXPECT_EQ(count_tessellation(mesh, cache).vertices, v4);
+
+  // sim: the host computes the same factors, the unit tessellates, the GE displaces.
+  const fs::path sim = dir.path() / "s.ply";
+  const auto rs = run_tessim(with_sine({"sim", kWuson, "--adaptive", "nyquist", "-o", sim.string()}), dir.path());
+  ASSERT_EQ(rs.status, 0) << rs.err;
+  EXPECT_NE(rs.out.find("nyquist-adaptive (4 samples per wavelength)"), std::string::npos) << rs.out;
+  EXPECT_TRUE(fs::exists(sim));
+  const std::size_t result = rs.out.find("\nresult");
+  ASSERT_NE(result, std::string::npos) << rs.out;
+  EXPECT_EQ(printed_vertices(rs.out.substr(result)), v4) << rs.out;
+}
+
+TEST(DisplaceCli, NyquistMisuseIsAnInputError) {
+  TempDir dir;
+  const std::string out = (dir.path() / "x.ply").string();
+  struct Case {
+    std::vector<std::string> args;
+    const char* message;
+  };
+  const Case cases[] = {
+      {{"tessellate", kWuson, "-o", out, "--adaptive", "nyquist"},
+       "--adaptive: the nyquist rule samples a displacement: it needs --displace sine|noise"},
+      {{"tessellate", kWuson, "-o", out, "--adaptive", "screen+nyquist", "--camera", "eye=0,0,3"},
+       "--adaptive: the nyquist rule samples a displacement: it needs --displace sine|noise"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "nyquist", "--camera", "eye=0,0,3"}),
+       "--camera: --adaptive nyquist takes no camera (screen+nyquist does)"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "nyquist", "--viewport", "100x100"}),
+       "--viewport: --adaptive nyquist takes no camera (screen+nyquist does)"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "nyquist", "--pixels-per-segment", "3"}),
+       "--pixels-per-segment: is the screen rule's; --adaptive nyquist alone takes --samples-per-wavelength only"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "nyquist", "--outline-tolerance", "3"}),
+       "--outline-tolerance: is the silhouette rule's; --adaptive nyquist alone takes --samples-per-wavelength only"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--samples-per-wavelength", "8"}),
+       "--samples-per-wavelength: needs --adaptive nyquist, screen+nyquist or silhouette+nyquist"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "screen", "--samples-per-wavelength", "8", "--camera",
+                  "eye=0,0,3"}),
+       "--samples-per-wavelength: needs --adaptive nyquist, screen+nyquist or silhouette+nyquist"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "nyquist", "--samples-per-wavelength", "0.5"}),
+       "--samples-per-wavelength: 0.5 is not a finite number >= 1"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "nyquist", "--samples-per-wavelength", "nan"}),
+       "--samples-per-wavelength: 'nan' is not a finite number"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "nyquist", "--samples-per-wavelength", "inf"}),
+       "--samples-per-wavelength: 'inf' is not a finite number"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "screen+nyquist"}),
+       "--camera: --adaptive screen+nyquist needs --camera eye=x,y,z"},
+      {with_sine({"tessellate", kWuson, "-o", out, "--adaptive", "silhouette+nyquist"}),
+       "--camera: --adaptive silhouette+nyquist needs --camera eye=x,y,z"},
+      {with_sine({"sim", kWuson, "-o", out, "--adaptive", "nyquist", "--camera", "eye=0,0,3"}),
+       "--camera: --adaptive nyquist takes no camera (screen+nyquist does)"},
+      {{"sim", kWuson, "-o", out, "--adaptive", "nyquist"},
+       "--adaptive: the nyquist rule samples a displacement: it needs --displace sine|noise"},
+      {with_sine({"render", kWuson, "-o", out + ".png", "--adaptive", "nyquist", "--samples-per-wavelength", "0.5"}),
+       "--samples-per-wavelength: 0.5 is not a finite number >= 1"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_tessim(c.args, dir.path());
+    EXPECT_EQ(r.status, 2) << c.message << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("tessim: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_FALSE(fs::exists(out)) << c.message;
+    EXPECT_FALSE(fs::exists(out + ".png")) << c.message;
   }
 }
 
