@@ -82,6 +82,18 @@ AnalyticPrediction predict(const UnitConfig& cfg, int cpg_cycles, std::optional<
   }
   p.dpg = 1.0;
   p.tail_cycles = cfg.int_latency + 1;
+  if (cfg.evaluation == Evaluation::Gpe) {
+    // No TE: the DPG's points go straight to the GE (microarchitecture.md §12); the host's control
+    // points take the CPG stage's accept and write, two cycles per patch.
+    p.int_issue = p.te_chain = 0.0;
+    p.chain_span = 0;
+    p.tail_cycles = 1;
+    if (cfg.cpg_mapping == CpgMapping::Host) {
+      p.cpg = 2.0 / P;
+      p.gpe = p.gpe_vertex;
+      p.fill_cycles = 4;
+    }
+  }
 
   const std::array<std::pair<const char*, double>, 5> bounds = {{
       {"int_issue", p.int_issue}, {"te_chain", p.te_chain}, {"cpg", p.cpg}, {"gpe", p.gpe}, {"dpg", p.dpg}}};

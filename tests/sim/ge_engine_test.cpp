@@ -13,6 +13,7 @@
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"
+#include "sim/analytic.hpp"
 #include "sim/ge_cost.hpp"
 #include "sim/simulate.hpp"
 
@@ -266,6 +267,12 @@ TEST(GeEvaluation, TheGeEvaluatingEveryPointIsTheLimitAtLargeFactors) {
   // The GE never waits once it started: one vertex every K + E cycles, after the first patch's CPG.
   EXPECT_EQ(r.gpe[GpeClass::Busy], (v - 1) * static_cast<std::uint64_t>(per_vertex) + 1);
   EXPECT_LE(r.unit.cycles, (v - 1) * static_cast<std::uint64_t>(per_vertex) + 1 + static_cast<std::uint64_t>(r.cpg_cycles) + 8);
+  // The analytic model knows there is no TE: the GE's K + E bounds the run, and its run length
+  // is the measured one within a patch's CPG.
+  const AnalyticPrediction p = predict(with_ge_cost(cfg, r.ge), r.cpg_cycles);
+  EXPECT_EQ(p.bottleneck, std::string("gpe"));
+  EXPECT_EQ(p.int_issue, 0.0);
+  EXPECT_NEAR(p.run_cycles(40), static_cast<double>(r.unit.cycles), static_cast<double>(r.cpg_cycles));
   // No INT blocks; the DPG hands out each point in exactly one cycle.
   EXPECT_EQ(r.unit.int_blocks, 0);
   EXPECT_EQ(r.unit.te[TeClass::Busy], v);
