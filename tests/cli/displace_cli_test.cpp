@@ -190,3 +190,42 @@ TEST(DisplaceCli, NyquistMisuseIsAnInputError) {
 
 }  // namespace
 }  // namespace tessim
+
+namespace tessim {
+namespace {
+
+// The interface of `tessim sim --displace`: the unit's output displaced by the geometry engine is
+// the float reference's displaced surface within 1e-5 of the diagonal (both ways: every point
+// of each near one of the other), and `--evaluation gpe --cpg-mapping host` gives the reference's.
+TEST(DisplaceCli, SimWritesTheUnitsOutputDisplacedWithinOneHundredThousandthOfTheDiagonal) {
+  TempDir dir;
+  const std::vector<std::string> displace{"--displace", "sine", "--amplitude", "0.03", "--frequency", "50"};
+  auto with = [](std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  const fs::path reference = dir.path() / "t.ply", unit = dir.path() / "s.ply", ge = dir.path() / "g.ply";
+  ASSERT_EQ(run_tessim(with({"tessellate", kWuson, "-L", "5", "-o", reference.string()}, displace), dir.path()).status, 0);
+  const auto r = run_tessim(with({"sim", kWuson, "-L", "5", "-o", unit.string(), "--quiet"}, displace), dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("GE       20 cycles/vertex: K=8 + 12 displacing (sine, amplitude 0.03, frequency 50)"),
+            std::string::npos)
+      << r.out;
+  const auto g = run_tessim(with({"sim", kWuson, "-L", "5", "-o", ge.string(), "--quiet", "--evaluation", "gpe",
+                                  "--cpg-mapping", "host"},
+                                 displace),
+                            dir.path());
+  ASSERT_EQ(g.status, 0) << g.err;
+  const Mesh want = load_mesh(reference.string()), got = load_mesh(unit.string()), on_ge = load_mesh(ge.string());
+  const double tolerance = 1e-5 * bounding_box(load_mesh(kWuson)).diagonal();
+  // (The reader welds equal single-precision positions, so the counts may differ by a few.)
+  EXPECT_LE(tessim::testing::farthest_from(got.positions, want.positions, tolerance), tolerance);
+  EXPECT_LE(tessim::testing::farthest_from(want.positions, got.positions, tolerance), tolerance);
+  // The host's control points on the GE: the reference's points up to the DPG's 16-bit weights
+  // and the reader's single precision.
+  const double close = 1e-6 * bounding_box(load_mesh(kWuson)).diagonal();
+  EXPECT_LE(tessim::testing::farthest_from(on_ge.positions, want.positions, close), close);
+}
+
+}  // namespace
+}  // namespace tessim
