@@ -75,8 +75,18 @@ int ge_cycles(const GeOps& ops, const EnvironmentConfig& env) {
 GeVertexCost ge_vertex_cost(const UnitConfig& cfg, DisplaceKind displace) {
   GeVertexCost c;
   c.base = cfg.gpe_cycles;
-  if (cfg.evaluation == Evaluation::Gpe) c.evaluation = ge_cycles(evaluation_ops(cfg.normals), cfg);
-  c.displacement = ge_cycles(displacement_ops(displace), cfg);
+  // Evaluation and displacement are one shader program: their slots are rounded up to cycles once,
+  // and the displacement's part is what it adds to the evaluation's.
+  GeOps shader = displacement_ops(displace);
+  if (cfg.evaluation == Evaluation::Gpe) {
+    const GeOps evaluation = evaluation_ops(cfg.normals);
+    c.evaluation = ge_cycles(evaluation, cfg);
+    shader.alu += evaluation.alu;
+    shader.sfu += evaluation.sfu;
+    shader.lookup += evaluation.lookup;
+  }
+  c.displacement = ge_cycles(shader, cfg) - c.evaluation;
+  c.shader_slots = ge_slots(shader, cfg);
   return c;
 }
 

@@ -4,8 +4,8 @@
 // scalar issue slots per cycle; a multiply, add, multiply-add, compare, floor, conversion or
 // integer operation takes one slot, a special function (reciprocal square root, sine, cosine)
 // ge_sfu_cost slots and a table read (the noise's permutation and gradients) ge_lookup_cost slots.
-// A vertex's part costs ceil(slots / lanes) cycles, added to K (gpe_cycles), the GE's own work per
-// vertex (transform and lighting).
+// The shader's slots cost ceil(slots / lanes) cycles per vertex, added to K (gpe_cycles), the GE's
+// own work per vertex (transform and lighting).
 #pragma once
 
 #include <cstdint>
@@ -37,10 +37,13 @@ std::uint64_t ge_slots(const GeOps& ops, const EnvironmentConfig& env);
 int ge_cycles(const GeOps& ops, const EnvironmentConfig& env);
 
 // GE cycles per vertex of a run, by part: K, the evaluation (evaluation gpe), the displacement.
+// Evaluation and displacement run as one program: total = K + ceil((evaluation's + displacement's
+// slots) / lanes); `displacement` is what the displacement adds to ceil(evaluation's slots / lanes).
 struct GeVertexCost {
   int base = 0;
   int evaluation = 0;
   int displacement = 0;
+  std::uint64_t shader_slots = 0;  // issue slots per vertex of evaluation and displacement together
   int total() const { return base + evaluation + displacement; }
   bool operator==(const GeVertexCost&) const = default;
 };

@@ -110,6 +110,7 @@ nlohmann::json stats_units() {
       {"ge.cycles_per_vertex.evaluation", "cycles/vertex"},
       {"ge.cycles_per_vertex.displacement", "cycles/vertex"},
       {"ge.cycles_per_vertex.total", "cycles/vertex"},
+      {"ge.shader_slots_per_vertex", "issue slots/vertex (evaluation and displacement)"},
       {"ge.displacement.amplitude", "mesh units"},
       {"ge.displacement.frequency", "radians per mesh unit"},
   };
@@ -207,6 +208,7 @@ nlohmann::json stats_json(const SimResult& r) {
       {"ge",
        {{"cycles_per_vertex",
          {{"base", r.ge.base}, {"evaluation", r.ge.evaluation}, {"displacement", r.ge.displacement}, {"total", r.ge.total()}}},
+        {"shader_slots_per_vertex", r.ge.shader_slots},
         {"displacement",
          {{"kind", to_string(r.displace.kind)}, {"amplitude", r.displace.amplitude}, {"frequency", r.displace.frequency}}}}},
   };
