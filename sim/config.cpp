@@ -65,6 +65,15 @@ std::string to_string(CpgMapping m) {
 
 std::string to_string(Evaluation e) { return e == Evaluation::Unit ? "unit" : "gpe"; }
 
+std::string to_string(Distribution d) {
+  switch (d) {
+    case Distribution::RoundRobin: return "round_robin";
+    case Distribution::LeastLoaded: return "least_loaded";
+    case Distribution::EarliestFinish: return "earliest_finish";
+  }
+  return "?";
+}
+
 void UnitConfig::validate(const std::string& source) const {
   for (const ParamSpec& p : unit_params()) check_range(source, p, *this);
   // Checks across parameters, beyond the ranges of the table.
@@ -82,6 +91,12 @@ void UnitConfig::validate(const std::string& source) const {
   if (cpg_mapping == CpgMapping::Host && !(cpg == CpgVariant{}))
     throw InputError(source, "cpg_lanes / cpg_digit_bits / cpg_copies / cpg_product_reg",
                      "describe the dedicated CPG; with cpg_mapping host the host computes the control points");
+  if (units > 1 && (cpg_mapping != CpgMapping::Dedicated || evaluation != Evaluation::Unit))
+    throw InputError(source, "units",
+                     "a system of " + std::to_string(units) +
+                         " units takes dedicated CPGs evaluating on their TEs (cpg_mapping dedicated, evaluation unit)");
+  if (units > 1 && reorder_slots < 2)
+    throw InputError(source, "reorder_slots", "a system of units needs at least 2 (one is kept for the oldest patch)");
   if (cpg_mapping == CpgMapping::Host && evaluation != Evaluation::Gpe)
     throw InputError(source, "cpg_mapping",
                      "'host' sends control points, which only the geometry engine takes (evaluation gpe); the "

@@ -31,6 +31,13 @@ enum class Evaluation {
   Gpe,
 };
 
+// How a system of several units shares one triangle stream (sim/system.hpp).
+enum class Distribution {
+  RoundRobin,     // triangle (or batch) i to unit i mod M, waiting for it when its TRI FIFO is full
+  LeastLoaded,    // to the unit with the fewest vertices dispatched and not yet out (from the factors)
+  EarliestFinish, // to the unit whose predicted drain time, max(CPG backlog, vertex backlog), is least
+};
+
 // What a chip is: a different value is a different RTL build (rtl/tess_pkg.sv parameters) or a
 // different unit. Blocks of the unit are built from this part only.
 struct HardwareConfig {
@@ -47,6 +54,11 @@ struct HardwareConfig {
   // The CPG takes scalar tags (docs/stpn.md): the input stream carries them and tagged
   // triangles get scalar-tagged control points, for extra CPG cycles (cpg_tag_cycles).
   int cpg_tags = 0;  // 0 or 1 (an int so that the parameter table's range check sees the value given)
+  // Several units behind a distributor, their output put back in stream order (sim/system.hpp).
+  int units = 1;              // M
+  int reorder_slots = 256;    // R: vertex slots of the reassembly buffer, shared by the units
+  Distribution distribution = Distribution::RoundRobin;
+  int dispatch_batch = 1;     // consecutive triangles the distributor sends to the same unit
   bool operator==(const HardwareConfig&) const = default;
 };
 
@@ -60,6 +72,7 @@ struct EnvironmentConfig {
   int ge_alu_lanes = 4;      // scalar issue slots per cycle
   int ge_sfu_cost = 4;       // slots of a special function (reciprocal square root, sine, cosine)
   int ge_lookup_cost = 1;    // slots of a table read
+  int ge_ports = 1;          // P: geometry-engine ports behind a system of units, each one vertex every K cycles
   bool operator==(const EnvironmentConfig&) const = default;
 };
 
@@ -100,5 +113,6 @@ nlohmann::json to_json(const UnitConfig& cfg);
 
 std::string to_string(CpgMapping m);
 std::string to_string(Evaluation e);
+std::string to_string(Distribution d);
 
 }  // namespace tessim::sim

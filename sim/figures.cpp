@@ -15,8 +15,8 @@ double ratio(std::uint64_t a, std::uint64_t b) { return b == 0 ? 0.0 : static_ca
 
 }  // namespace
 
-double throughput(const SimResult& r) { return ratio(r.unit.vertices_out, r.unit.cycles); }
-double cycles_per_vertex(const SimResult& r) { return ratio(r.unit.cycles, r.unit.vertices_out); }
+double throughput(const SimResult& r) { return ratio(r.unit.vertices_out, r.run_cycles()); }
+double cycles_per_vertex(const SimResult& r) { return ratio(r.run_cycles(), r.unit.vertices_out); }
 
 double int_utilisation(const SimResult& r) {
   std::uint64_t busy = 0;
@@ -24,9 +24,32 @@ double int_utilisation(const SimResult& r) {
   return ratio(busy, r.unit.cycles * static_cast<std::uint64_t>(r.unit.int_blocks));
 }
 
+// A system of units: the GE ports when they are busy, else what the ports waited for (the
+// oldest patch's unit, or a stream with nothing in flight), and the buffer when it held the units.
+static std::string system_limit(const SimResult& r) {
+  const SystemStats& s = r.system->stats;
+  const std::uint64_t port_cycles = s.cycles * r.system->ports.size();
+  const double busy = ratio(r.gpe[GpeClass::Busy], port_cycles);
+  const double waited_unit = ratio(s.ports_waiting_unit, port_cycles);
+  const double waited_stream = ratio(s.ports_waiting_stream, port_cycles);
+  const double blocked = ratio(s.unit_blocked, s.cycles * r.system->units.size());
+  char buf[320];
+  const char* limit = busy >= std::max(waited_unit, waited_stream) ? "GE ports"
+                      : blocked > 0.05                             ? "reassembly buffer"
+                      : waited_unit >= waited_stream               ? "units"
+                                                                   : "distributor";
+  std::snprintf(buf, sizeof buf,
+                "%s: ports busy %.1f%%, waiting for the oldest patch's unit %.1f%%, for the stream %.1f%%; units "
+                "blocked by a full buffer %.1f%%; %llu dispatch stalls",
+                limit, 100 * busy, 100 * waited_unit, 100 * waited_stream, 100 * blocked,
+                static_cast<unsigned long long>(s.dispatch_stalls));
+  return buf;
+}
+
 std::string bottleneck(const SimResult& r) {
   const std::uint64_t cycles = r.unit.cycles;
   if (cycles == 0) return "none (empty run)";
+  if (r.system) return system_limit(r);
   const UnitConfig& c = r.config;
   char buf[320];
   // The GPE limits when it waited for a vertex no more often than the TE waited for it.

@@ -23,6 +23,7 @@ using nlohmann::json;
 constexpr std::array<const char*, 4> kNormalChoices{"quadratic", "reflect", "linear", "derivative"};
 constexpr std::array<const char*, 3> kCpgChoices{"dedicated", "gpe", "host"};
 constexpr std::array<const char*, 2> kEvaluationChoices{"unit", "gpe"};
+constexpr std::array<const char*, 3> kDistributionChoices{"round_robin", "least_loaded", "earliest_finish"};
 
 // get/set of a plain field of UnitConfig (FIELD is an expression on `c`).
 #define TESSIM_PARAM_FIELD(FIELD)                                                  \
@@ -35,7 +36,7 @@ constexpr auto E = ParamKind::Environment;
 constexpr auto W = ParamKind::Workload;
 constexpr auto I = ParamType::Int;
 
-const std::array<ParamSpec, 26> kParams{{
+const std::array<ParamSpec, 31> kParams{{
     {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
      "tessellation factor: segments per edge, the same for every triangle of a run",
      TESSIM_PARAM_FIELD(tess_factor)},
@@ -114,6 +115,28 @@ const std::array<ParamSpec, 26> kParams{{
      "fraction bits of the silhouette weight alpha the CPG takes per edge and blends its tangent points "
      "with (one multiplication each); 0: no alpha input, plain PN",
      TESSIM_PARAM_FIELD(format.alpha_bits)},
+    {"units", "--units", "", nullptr, "M", H, I, 1, 16, {}, "units",
+     "units sharing the triangle stream behind a distributor, their vertices put back in stream order "
+     "(docs/microarchitecture.md §13)",
+     TESSIM_PARAM_FIELD(units)},
+    {"ge_ports", "--ge-ports", "", nullptr, "P", E, I, 1, 16, {}, "ports",
+     "geometry-engine ports behind a system of units, each taking one vertex every K cycles in stream order",
+     TESSIM_PARAM_FIELD(ge_ports)},
+    {"reorder_slots", "--reorder-slots", "", nullptr, "R", H, I, 2, 65536, {}, "vertices",
+     "vertex slots of the reassembly buffer that puts the units' output back in stream order",
+     TESSIM_PARAM_FIELD(reorder_slots)},
+    {"distribution", "--distribution", "", nullptr, "", H, ParamType::Enum, 0, 0, kDistributionChoices, "",
+     "which unit gets the next triangle: in turn, the least vertices outstanding, or the earliest predicted finish",
+     [](const UnitConfig& c) -> json { return to_string(c.distribution); },
+     [](UnitConfig& c, const json& v) {
+       const std::string d = v.get<std::string>();
+       c.distribution = d == "least_loaded"      ? Distribution::LeastLoaded
+                        : d == "earliest_finish" ? Distribution::EarliestFinish
+                                                 : Distribution::RoundRobin;
+     }},
+    {"dispatch_batch", "--dispatch-batch", "", nullptr, "", H, I, 1, 64, {}, "triangles",
+     "consecutive triangles the distributor sends to the same unit before it chooses again",
+     TESSIM_PARAM_FIELD(dispatch_batch)},
     {"tri_fifo_depth", "--tri-fifo-depth", "", "TriFifoDepth", "Dt", H, I, 1, 64, {}, "triangles",
      "depth of the input triangle FIFO in front of the CPG", TESSIM_PARAM_FIELD(tri_fifo_depth)},
     {"vtx_fifo_depth", "--vtx-fifo-depth", "", "VtxFifoDepth", "Dv", H, I, 1, 64, {}, "vertices",

@@ -124,6 +124,77 @@ SimResult simulate_ge_evaluation(const Mesh& mesh, const UnitConfig& cfg, std::u
   return r;
 }
 
+// cfg.units > 1: the system of sim/system.hpp, cycle by cycle. `r` comes with what simulate_range
+// set up.
+SimResult simulate_system(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
+                          const SimHooks& hooks, const MeshPatterns& patterns, SimResult r,
+                          std::chrono::steady_clock::time_point t0) {
+  if (!hooks.observers.empty())
+    throw InputError("command line", "--units", "a trace or schedule follows one unit: not a system of several");
+  const UnitConfig run_cfg = with_ge_cost(cfg, r.ge);
+  UnitSystem system(cfg, r.ge.total());
+  MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, patterns, cfg.cpg_tags, first, end);
+  r.cpg_cycles = system.unit(0).cpg_cycles();
+  r.factors = workload_factors(source);
+  const std::uint64_t total = source.vertices();
+  OutputCheck output(mesh, source, cfg.format, patterns.d3d11 != nullptr);
+  std::optional<PatchAssembly> patches;
+  const std::function<void(const PatchOut&)> on_patch =
+      patterns.displace.enabled() && hooks.on_patch ? displaced(hooks.on_patch, patterns.displace) : hooks.on_patch;
+  if (on_patch) patches.emplace(source, r.scaling, cfg.format, cfg.tess_factor, on_patch);
+  std::optional<MeshErrors> mesh_errors;
+  std::optional<ArithmeticCheck> arithmetic;
+  if (hooks.measure_errors) {
+    mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags, patterns.d3d11, patterns.silhouette);
+    arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, patterns));
+  }
+  // A system's vertex can wait behind another unit's patches: the watchdog allows M times a unit's.
+  Watchdog watchdog(run_cfg, system.unit(0).cpg_cycles() * cfg.units);
+  std::uint64_t accepted = 0, cycle = 0;
+  while (accepted < total) {
+    if (system.tick(source.available(), source.front())) source.pop();
+    for (const VertexFx& v : system.emitted()) {
+      output.check(v, cycle);
+      if (hooks.on_vertex) hooks.on_vertex(v);
+      if (mesh_errors) {
+        mesh_errors->add(v);
+        arithmetic->check(v);
+      }
+      if (patches) patches->add(v, output.index(), output.L(), output.patch_vertices());
+      if (v.last) {
+        if (hooks.vertices_done)
+          hooks.vertices_done->fetch_add(static_cast<std::uint64_t>(output.patch_vertices()), std::memory_order_relaxed);
+        if (hooks.cancel && hooks.cancel->load(std::memory_order_relaxed)) throw SimCancelled();
+      }
+      output.next();
+      ++accepted;
+      watchdog.progress(cycle);
+    }
+    ++cycle;
+    watchdog.check(cycle);
+  }
+  SystemResult sys;
+  sys.stats = system.stats();
+  for (int u = 0; u < system.units(); ++u) {
+    sys.units.push_back(system.unit(u).stats());
+    add(r.unit, sys.units.back());
+    r.cpg_tag_cycles += system.unit(u).cpg_tag_cycles();
+  }
+  r.unit.int_blocks = cfg.int_blocks;
+  for (int p = 0; p < system.ports(); ++p) {
+    sys.ports.push_back(system.port(p).stats());
+    r.gpe += sys.ports.back();
+    r.gpe.cycles += sys.ports.back().cycles;
+    r.gpe.vertices += sys.ports.back().vertices;
+  }
+  r.system = std::move(sys);
+  r.degenerate_patches = output.degenerate_patches();
+  r.zero_normals = output.zero_normals();
+  if (mesh_errors) r.errors = SimErrors{mesh_errors->result(), arithmetic->result()};
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
 }  // namespace
 
 SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks, MeshPatterns patterns) {
@@ -155,6 +226,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   r.ge = ge_vertex_cost(cfg, patterns.displace.kind);
   // The geometry engine as the run sees it: K plus the shader work it does per vertex.
   if (cfg.evaluation == Evaluation::Gpe) return simulate_ge_evaluation(mesh, cfg, first, end, hooks, patterns, r, t0);
+  if (cfg.units > 1) return simulate_system(mesh, cfg, first, end, hooks, patterns, r, t0);
   const UnitConfig run_cfg = with_ge_cost(cfg, r.ge);
 
   Unit unit(cfg);

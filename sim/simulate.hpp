@@ -17,6 +17,7 @@
 #include "sim/hooks.hpp"
 #include "sim/host.hpp"
 #include "sim/reference_check.hpp"
+#include "sim/system.hpp"
 #include "sim/testbench.hpp"
 #include "sim/timeline.hpp"
 #include "sim/unit.hpp"
@@ -29,6 +30,15 @@ namespace tessim::sim {
 struct SimErrors {
   ErrorStats mesh;
   ArithmeticErrors arithmetic;
+};
+
+// A system of several units (cfg.units > 1, sim/system.hpp): its own counts, each unit's and each
+// GE port's. SimResult::unit then sums the units (its cycles are unit-cycles, M per system cycle)
+// and SimResult::gpe the ports (P per system cycle); system_cycles() is the run's length.
+struct SystemResult {
+  SystemStats stats;
+  std::vector<UnitCounters> units;
+  std::vector<GpeStats> ports;
 };
 
 struct SimResult {
@@ -58,6 +68,10 @@ struct SimResult {
   Timeline timeline;                     // the classes over time, in buckets of cycles
   // A chunked run (sim/chunked.hpp): the cycles of each chunk; empty for one run of the stream.
   std::vector<std::uint64_t> chunk_cycles;
+  std::optional<SystemResult> system;    // a system of units (cfg.units > 1)
+
+  // Cycles of the run: the unit's, or the system's.
+  std::uint64_t run_cycles() const { return system ? system->stats.cycles : unit.cycles; }
 };
 
 // Runs every triangle of `mesh` through the unit with a uniform factor cfg.tess_factor until

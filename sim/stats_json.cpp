@@ -111,6 +111,16 @@ nlohmann::json stats_units() {
       {"ge.cycles_per_vertex.displacement", "cycles/vertex"},
       {"ge.cycles_per_vertex.total", "cycles/vertex"},
       {"ge.shader_slots_per_vertex", "issue slots/vertex (evaluation and displacement)"},
+      {"system.units[].triangles", "triangles"},
+      {"system.units[].vertices", "vertices"},
+      {"system.ports[].vertices", "vertices"},
+      {"system.buffer.slots", "vertices"},
+      {"system.buffer.max_occupancy", "vertices"},
+      {"system.buffer.occupancy_histogram[]", "cycles with i..i+1 sixteenths of the slots taken (15: up to full)"},
+      {"system.stalls.dispatch", "cycles (a triangle waited for its unit)"},
+      {"system.stalls.units_blocked_by_buffer", "unit-cycles"},
+      {"system.stalls.ports_waiting_for_unit", "port-cycles"},
+      {"system.stalls.ports_waiting_for_stream", "port-cycles"},
       {"ge.displacement.amplitude", "mesh units"},
       {"ge.displacement.frequency", "radians per mesh unit"},
   };
@@ -126,10 +136,15 @@ nlohmann::json stats_units() {
         u["te." + key] = row.unit;
         u["limit.te_late." + key] = std::string(row.unit) + " (in the late vertex intervals)";
         u["timeline.te." + key + "[]"] = row.unit;
+        u["system.units[].te." + key] = row.unit;
         break;
-      case CounterBlock::Cpg: u["cpg." + key] = row.unit; break;
+      case CounterBlock::Cpg:
+        u["cpg." + key] = row.unit;
+        u["system.units[].cpg." + key] = row.unit;
+        break;
       case CounterBlock::Gpe:
         u["gpe." + key] = row.unit;
+        u["system.ports[]." + key] = row.unit;
         u["timeline.gpe." + key + "[]"] = row.unit;
         break;
     }
@@ -215,6 +230,34 @@ nlohmann::json stats_json(const SimResult& r) {
   for (std::size_t row = first_row(CounterBlock::Run); row < first_row(CounterBlock::Run) + row_count(CounterBlock::Run); ++row)
     j[kCounterRegistry[row].key] = counter_value(u, row);
   j["gpe"]["vertices"] = r.gpe.vertices;
+  if (r.system) {
+    // A system of units: "cycles" is the system's; the unit blocks' classes above sum the units.
+    const SystemStats& st = r.system->stats;
+    j["cycles"] = st.cycles;
+    json units = json::array();
+    for (std::size_t i = 0; i < r.system->units.size(); ++i) {
+      const UnitCounters& k = r.system->units[i];
+      units.push_back({{"triangles", st.unit_triangles[i]}, {"vertices", st.unit_vertices[i]},
+                       {"te", classes_json(k.te)}, {"cpg", classes_json(k.cpg)}});
+    }
+    json ports = json::array();
+    for (const GpeStats& g : r.system->ports) {
+      json p = classes_json<GpeClass>(g);
+      p["vertices"] = g.vertices;
+      ports.push_back(p);
+    }
+    j["system"] = {{"units", units},
+                   {"ports", ports},
+                   {"buffer",
+                    {{"slots", r.config.reorder_slots},
+                     {"max_occupancy", st.max_occupancy},
+                     {"occupancy_histogram", st.occupancy_histogram}}},
+                   {"stalls",
+                    {{"dispatch", st.dispatch_stalls},
+                     {"units_blocked_by_buffer", st.unit_blocked},
+                     {"ports_waiting_for_unit", st.ports_waiting_unit},
+                     {"ports_waiting_for_stream", st.ports_waiting_stream}}}};
+  }
   if (r.errors) {
     j["errors"] = to_json(r.errors->mesh);
     j["errors"]["arithmetic"] = to_json(r.errors->arithmetic);

@@ -108,15 +108,29 @@ std::string summary(const SimResult& r) {
   }
   std::snprintf(buf, sizeof buf,
                 "result   %llu cycles  %llu vertices  %.3f cycles/vertex  %.4f vertices/cycle\n",
-                static_cast<unsigned long long>(n), static_cast<unsigned long long>(u.vertices_out),
+                static_cast<unsigned long long>(r.run_cycles()), static_cast<unsigned long long>(u.vertices_out),
                 cycles_per_vertex(r), throughput(r));
   s << buf;
   s << "limit    " << bottleneck(r) << "\n";
+  if (r.system) {
+    // Every line below sums the units (unit-cycles) and the ports (port-cycles).
+    const SystemStats& st = r.system->stats;
+    std::snprintf(buf, sizeof buf,
+                  "system   %zu units (%s, batches of %d), reassembly buffer %d slots (at most %d taken), %zu GE "
+                  "ports; the lines below sum the units and the ports\n",
+                  r.system->units.size(), to_string(c.distribution).c_str(), c.dispatch_batch, c.reorder_slots,
+                  st.max_occupancy, r.system->ports.size());
+    s << buf;
+    s << "units   ";
+    for (std::size_t i = 0; i < r.system->units.size(); ++i)
+      s << " " << i << ": " << st.unit_triangles[i] << " triangles " << st.unit_vertices[i] << " vertices;";
+    s << "\n";
+  }
   s << "INT      utilisation " << percent(static_cast<std::uint64_t>(int_utilisation(r) * 1e6), 1000000)
     << "  per block:";
   for (std::size_t i = 0; i < u.int_busy_used().size(); ++i) s << "  " << i << ":" << percent(u.int_busy[i], n);
   s << "\n";
-  s << classes_line(u.te, n) << classes_line(u.cpg, n) << classes_line<GpeClass>(r.gpe, n);
+  s << classes_line(u.te, n) << classes_line(u.cpg, n) << classes_line<GpeClass>(r.gpe, r.gpe.cycles);
   // The late intervals: the TE's three stall classes that name a limit, busy, and the rest.
   const ClassCounts<TeClass>& w = r.te_late;
   const std::uint64_t gw = w.total();

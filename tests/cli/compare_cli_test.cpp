@@ -49,9 +49,15 @@ TEST(StatsJson, EveryNumberHasAUnitAndEveryUnitANumber) {
                                       "eye=1.5,1.5,5,target=1.5,1.5,1.5", "--chunks", "2", "--stats", rich.string()},
                                      dir.path());
   ASSERT_EQ(r.status, 0) << r.err;
+  // A system of units adds its own figures.
+  const auto system = dir.path() / "system.json";
+  ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "2", "--units", "2", "--ge-ports", "2", "--stats", system.string()},
+                                dir.path())
+                .status,
+            0);
   const json units = sim::stats_units();
   std::set<std::string> seen;
-  for (const auto& p : {plain, rich}) {
+  for (const auto& p : {plain, rich, system}) {
     const json j = read_json(p);
     EXPECT_EQ(j["schema_version"], sim::kStatsSchemaVersion);
     EXPECT_EQ(j["tool"]["name"], "tessim");

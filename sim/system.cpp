@@ -1,0 +1,208 @@
+#include "sim/system.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "sim/cpg.hpp"
+#include "sim/int_ops.hpp"
+
+namespace tessim::sim {
+
+namespace {
+
+const UnitConfig& checked(const UnitConfig& cfg) {
+  if (cfg.units < 1 || cfg.units > UnitSystem::kMaxUnits || cfg.ge_ports < 1 || cfg.ge_ports > UnitSystem::kMaxPorts ||
+      cfg.reorder_slots < 2 || cfg.dispatch_batch < 1)
+    throw std::invalid_argument("UnitSystem: configuration not validated");
+  return cfg;
+}
+
+}  // namespace
+
+UnitSystem::UnitSystem(const UnitConfig& cfg, int ge_cycles_per_vertex) : cfg_(checked(cfg)) {
+  const auto m = static_cast<std::size_t>(cfg.units);
+  units_.reserve(m);
+  for (std::size_t u = 0; u < m; ++u) units_.emplace_back(cfg);
+  ports_.reserve(static_cast<std::size_t>(cfg.ge_ports));
+  // Port p draws its random stalls from seed + p: each port its own stream, the same every run.
+  for (int p = 0; p < cfg.ge_ports; ++p)
+    ports_.emplace_back(ge_cycles_per_vertex, cfg.gpe_stall_prob, cfg.seed + static_cast<std::uint64_t>(p));
+  slots_.resize(static_cast<std::size_t>(cfg.reorder_slots));
+  for (std::size_t i = 0; i < slots_.size(); ++i) slots_[i].next = i + 1 < slots_.size() ? static_cast<int>(i + 1) : -1;
+  free_ = 0;
+  queues_.resize(m);
+  // Patches in flight: each unit holds at most its TRI FIFO, its CPG copies and its buffers' patches
+  // (a patch leaves the unit with its last vertex), and the reassembly buffer at most R more
+  // (every patch in it has at least one vertex there).
+  order_.resize(m * static_cast<std::size_t>(cfg.tri_fifo_depth + cfg.cpg.copies + cfg.cp_buffers + cfg.vtx_fifo_depth + 1) +
+                static_cast<std::size_t>(cfg.reorder_slots) + 1);
+  pending_patches_.assign(m, 0);
+  pending_vertices_.assign(m, 0);
+  // The distributor's predictions (earliest_finish): a patch takes (C + 1) / Mc cycles of the CPG,
+  // a vertex ops / N cycles of the TE; both scaled by Mc N to integers.
+  cpg_weight_ = static_cast<std::uint64_t>(cpg_cycles(cfg.normals, cfg.format, cfg.cpg) + 1) *
+                static_cast<std::uint64_t>(cfg.int_blocks);
+  te_weight_ = static_cast<std::uint64_t>(int_ops::ops_per_vertex(cfg.normals)) * static_cast<std::uint64_t>(cfg.cpg.copies);
+  emitted_.reserve(static_cast<std::size_t>(cfg.ge_ports));
+  admit_.assign(m, 0);
+  stats_.unit_triangles.assign(m, 0);
+  stats_.unit_vertices.assign(m, 0);
+}
+
+bool UnitSystem::idle() const {
+  if (order_count_ > 0 || occupancy_ > 0) return false;
+  for (const Unit& u : units_)
+    if (!u.idle()) return false;
+  return true;
+}
+
+int UnitSystem::choose(const TriangleFx& tri) const {
+  if (batch_left_ > 0) return batch_unit_;
+  switch (cfg_.distribution) {
+    case Distribution::RoundRobin: return next_rr_;
+    case Distribution::LeastLoaded: {
+      // Among the units that can take a triangle now, the fewest vertices outstanding; the lowest
+      // index on a tie. None ready: the round-robin turn (the triangle waits for it).
+      int best = -1;
+      for (int u = 0; u < units(); ++u)
+        if (units_[static_cast<std::size_t>(u)].tri_ready() &&
+            (best < 0 || pending_vertices_[static_cast<std::size_t>(u)] < pending_vertices_[static_cast<std::size_t>(best)]))
+          best = u;
+      return best < 0 ? next_rr_ : best;
+    }
+    case Distribution::EarliestFinish: {
+      // The unit that would finish this patch first: its backlog is the longer of its CPG work
+      // ((C + 1) / Mc cycles a patch outstanding) and its TE work (ops / N cycles a vertex
+      // outstanding), the patch's own included. In integers, both times Mc N: the comparison of
+      // the RTL's distributor.
+      const auto vertices = static_cast<std::uint64_t>(patch_vertex_count(tri));
+      int best = -1;
+      std::uint64_t best_finish = 0;
+      for (int u = 0; u < units(); ++u) {
+        const auto i = static_cast<std::size_t>(u);
+        if (!units_[i].tri_ready()) continue;
+        const std::uint64_t finish = std::max((pending_patches_[i] + 1) * cpg_weight_,
+                                              (pending_vertices_[i] + vertices) * te_weight_);
+        if (best < 0 || finish < best_finish) {
+          best = u;
+          best_finish = finish;
+        }
+      }
+      return best < 0 ? next_rr_ : best;
+    }
+  }
+  return 0;
+}
+
+void UnitSystem::push(int unit, const VertexFx& v) {
+  const int s = free_;
+  Slot& slot = slots_[static_cast<std::size_t>(s)];
+  free_ = slot.next;
+  slot.vertex = v;
+  slot.next = -1;
+  Queue& q = queues_[static_cast<std::size_t>(unit)];
+  if (q.tail >= 0) slots_[static_cast<std::size_t>(q.tail)].next = s;
+  else q.head = s;
+  q.tail = s;
+  ++q.count;
+  ++occupancy_;
+}
+
+VertexFx UnitSystem::pop(int unit) {
+  Queue& q = queues_[static_cast<std::size_t>(unit)];
+  const int s = q.head;
+  Slot& slot = slots_[static_cast<std::size_t>(s)];
+  q.head = slot.next;
+  if (q.head < 0) q.tail = -1;
+  --q.count;
+  slot.next = free_;
+  free_ = s;
+  --occupancy_;
+  return slot.vertex;
+}
+
+bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
+  ++stats_.cycles;
+  const int r = cfg_.reorder_slots;
+  const int occupancy_at_start = occupancy_;
+  stats_.max_occupancy = std::max(stats_.max_occupancy, occupancy_at_start);
+  ++stats_.occupancy_histogram[static_cast<std::size_t>(std::min(15, occupancy_at_start * 16 / r))];
+
+  // ---- The buffer's admissions, from the registered state: the oldest patch's vertices while a
+  // slot is free, any other unit's while two are (one stays for the oldest patch).
+  int admitted = 0;
+  for (int u = 0; u < units(); ++u) {
+    const Unit& unit = units_[static_cast<std::size_t>(u)];
+    admit_[static_cast<std::size_t>(u)] = 0;
+    if (!unit.vtx_valid()) continue;
+    const bool oldest = order_count_ > 0 && order_[order_head_].unit == u && order_[order_head_].id == unit.vtx().id;
+    if (occupancy_at_start + admitted < (oldest ? r : r - 1)) {
+      admit_[static_cast<std::size_t>(u)] = 1;
+      ++admitted;
+    } else {
+      ++stats_.unit_blocked;
+    }
+  }
+
+  // ---- The ports, in index order, take the buffer's vertices in stream order.
+  emitted_.clear();
+  for (Gpe& port : ports_) {
+    const bool waiting_stream = order_count_ == 0;
+    const int head_unit = waiting_stream ? -1 : order_[order_head_].unit;
+    const bool available = !waiting_stream && queues_[static_cast<std::size_t>(head_unit)].count > 0;
+    const GpeCycle c = port.tick(available, false);
+    if (c.accepted) {
+      const VertexFx v = pop(head_unit);
+      emitted_.push_back(v);
+      ++stats_.vertices;
+      if (v.last) {
+        order_head_ = order_head_ + 1 == order_.size() ? 0 : order_head_ + 1;
+        --order_count_;
+      }
+    } else if (c.spare) {
+      ++(waiting_stream ? stats_.ports_waiting_stream : stats_.ports_waiting_unit);
+    }
+  }
+
+  // ---- The distributor.
+  const int target = tri_valid ? choose(tri) : 0;
+  const bool take = tri_valid && units_[static_cast<std::size_t>(target)].tri_ready();
+  if (tri_valid && !take) ++stats_.dispatch_stalls;
+  if (take) {
+    const auto t = static_cast<std::size_t>(target);
+    ++pending_patches_[t];
+    pending_vertices_[t] += static_cast<std::uint64_t>(patch_vertex_count(tri));
+    ++stats_.unit_triangles[t];
+    if (order_count_ == order_.size()) throw std::logic_error("UnitSystem: more patches in flight than the order FIFO holds");
+    std::size_t tail = order_head_ + order_count_;
+    if (tail >= order_.size()) tail -= order_.size();
+    order_[tail] = {static_cast<std::uint8_t>(target), tri.id};
+    ++order_count_;
+    if (batch_left_ == 0) {
+      batch_unit_ = target;
+      batch_left_ = cfg_.dispatch_batch;
+    }
+    if (--batch_left_ == 0) next_rr_ = target + 1 == units() ? 0 : target + 1;
+  }
+
+  // ---- The units' clock edges; each admitted vertex enters its unit's queue.
+  for (int u = 0; u < units(); ++u) {
+    const auto i = static_cast<std::size_t>(u);
+    Unit& unit = units_[i];
+    UnitInputs in;
+    in.tri_valid = take && target == u;
+    if (in.tri_valid) in.tri = tri;
+    in.vtx_ready = admit_[i] != 0;
+    if (in.vtx_ready) {
+      const VertexFx& v = unit.vtx();
+      push(u, v);
+      ++stats_.unit_vertices[i];
+      --pending_vertices_[i];
+      if (v.last) --pending_patches_[i];
+    }
+    unit.tick(in);
+  }
+  return take;
+}
+
+}  // namespace tessim::sim
