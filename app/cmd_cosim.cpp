@@ -78,6 +78,11 @@ std::string choose_variant(const CosimArgs& a, const ConfigFlags& flags, const s
     throw InputError(flags.config_file().empty() || flags.overrides().contains("evaluation") ? "command line"
                                                                                           : flags.config_file(),
                      "evaluation", "the RTL is the unit with its TE (evaluation unit); gpe exists in the cycle model only");
+  if (cfg.units != 1)
+    throw InputError(flags.config_file().empty() || flags.overrides().contains("units") ? "command line"
+                                                                                     : flags.config_file(),
+                     "units", "the RTL builds are single units; a system of " + std::to_string(cfg.units) +
+                                  " exists in the cycle model only (tessim sim --units)");
   if (const std::optional<std::string> v = rtl::find_rtl_variant(cfg.hardware(), a.verif)) return *v;
   const std::string source = flags.config_file().empty() || flags.overrides().contains("int_blocks")
                                  ? "command line"

@@ -230,6 +230,8 @@ CosimReport run_cosim_until(const std::vector<sim::TriangleFx>& stream, const Co
   if (opts.unit.cpg_mapping != sim::CpgMapping::Dedicated)
     throw InputError("co-simulation configuration", "cpg_mapping",
                      "the RTL implements the dedicated CPG only");
+  if (opts.unit.units != 1)
+    throw InputError("co-simulation configuration", "units", "the co-simulation runs one unit");
   if (opts.unit.evaluation != sim::Evaluation::Unit)
     throw InputError("co-simulation configuration", "evaluation", "the RTL evaluates on its TE (evaluation unit) only");
   for (std::size_t i = 0; i < stream.size(); ++i) {

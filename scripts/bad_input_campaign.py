@@ -392,6 +392,22 @@ def ge_cases(mesh: str) -> list[Case]:
     ]
 
 
+def system_cases(mesh: str) -> list[Case]:
+    """A system of units (docs/microarchitecture.md §13): counts out of range, an unknown policy, a
+    system with the GE-mapped CPG or evaluation on the GE, a trace of a system, and cosim of one."""
+    return [
+        Case("system", ["sim", mesh, "--units", "17", "-o", "{work}/o.ply"]),
+        Case("system", ["sim", mesh, "--units", "2", "--ge-ports", "0", "-o", "{work}/o.ply"]),
+        Case("system", ["sim", mesh, "--units", "2", "--reorder-slots", "1", "-o", "{work}/o.ply"]),
+        Case("system", ["sim", mesh, "--units", "2", "--distribution", "random", "-o", "{work}/o.ply"]),
+        Case("system", ["sim", mesh, "--units", "2", "--dispatch-batch", "65", "-o", "{work}/o.ply"]),
+        Case("system", ["sim", mesh, "--units", "2", "--cpg-mapping", "gpe", "-o", "{work}/o.ply"]),
+        Case("system", ["sim", mesh, "--units", "2", "--evaluation", "gpe", "-o", "{work}/o.ply"]),
+        Case("system", ["sim", mesh, "--units", "2", "--trace", "{work}/t.json", "-o", "{work}/o.ply"]),
+        Case("system", ["cosim", mesh, "--units", "2"]),
+    ]
+
+
 def misc_cases(mesh: str) -> list[Case]:
     cases = [
         Case("cli", []),
@@ -464,7 +480,7 @@ def build_cases(data: Path) -> list[Case]:
         cases.append(Case("image", ["report", "{data}/sample.json", "--image", "{data}/images/" + name, "-o", "{work}/r.html"]))
     for special in ("/dev/zero", "{data}/fifo.json", "{data}", "{data}/does_not_exist.png"):
         cases.append(Case("image", ["report", "{data}/sample.json", "--image", special, "-o", "{work}/r.html"], timeout=20))
-    cases += option_cases(mesh) + factor_cases(mesh) + output_cases(mesh) + ge_cases(mesh) + misc_cases(mesh)
+    cases += option_cases(mesh) + factor_cases(mesh) + output_cases(mesh) + ge_cases(mesh) + system_cases(mesh) + misc_cases(mesh)
     return cases
 
 
