@@ -56,6 +56,60 @@ PnPatch patch_from_fixed(const ControlPointsFx& cp, NormalMode mode, const Numbe
   return p;
 }
 
+// What a run does with each vertex the geometry engine accepts, the same for one unit and for a
+// system: the stream-order check, the hooks, the error measurement and the patches handed out.
+class AcceptedVertices {
+ public:
+  AcceptedVertices(const Mesh& mesh, const MeshSource& source, const UnitConfig& cfg, const SimHooks& hooks,
+                   const MeshPatterns& patterns, const HostScaling& scaling)
+      : hooks_(hooks),
+        output_(mesh, source, cfg.format, patterns.d3d11 != nullptr),
+        on_patch_(patch_sink(hooks, patterns)) {
+    if (on_patch_) patches_.emplace(source, scaling, cfg.format, cfg.tess_factor, on_patch_);
+    if (hooks.measure_errors) {
+      mesh_errors_.emplace(mesh, scaling, cfg, cfg.cpg_tags, patterns.d3d11, patterns.silhouette);
+      arithmetic_.emplace(ArithmeticCheck::for_mesh(mesh, scaling, cfg, patterns));
+    }
+  }
+
+  // The vertex `v`, accepted in `cycle`. Throws SimCancelled at a patch's end when asked to.
+  void take(const VertexFx& v, std::uint64_t cycle) {
+    output_.check(v, cycle);
+    if (hooks_.on_vertex) hooks_.on_vertex(v);
+    if (mesh_errors_) {
+      mesh_errors_->add(v);
+      arithmetic_->check(v);
+    }
+    if (patches_) patches_->add(v, output_.index(), output_.L(), output_.patch_vertices());
+    if (v.last) {
+      if (hooks_.vertices_done)
+        hooks_.vertices_done->fetch_add(static_cast<std::uint64_t>(output_.patch_vertices()), std::memory_order_relaxed);
+      if (hooks_.cancel && hooks_.cancel->load(std::memory_order_relaxed)) throw SimCancelled();
+    }
+    output_.next();
+  }
+
+  // The run's warnings and errors into `r`.
+  void finish(SimResult& r) const {
+    r.degenerate_patches = output_.degenerate_patches();
+    r.zero_normals = output_.zero_normals();
+    if (mesh_errors_) r.errors = SimErrors{mesh_errors_->result(), arithmetic_->result()};
+  }
+
+  // hooks.on_patch, behind the GE's displacement when the run displaces.
+  static std::function<void(const PatchOut&)> patch_sink(const SimHooks& hooks, const MeshPatterns& patterns) {
+    return patterns.displace.enabled() && hooks.on_patch ? displaced(hooks.on_patch, patterns.displace) : hooks.on_patch;
+  }
+
+ private:
+  const SimHooks& hooks_;
+  OutputCheck output_;
+  std::function<void(const PatchOut&)> on_patch_;  // PatchAssembly keeps a reference to it
+  std::optional<PatchAssembly> patches_;
+  std::optional<MeshErrors> mesh_errors_;
+  std::optional<ArithmeticCheck> arithmetic_;
+};
+
 // evaluation gpe: the DPG's points evaluated by the geometry engine (sim/ge_evaluation.hpp), cycle
 // by cycle. `r` comes with what simulate_range set up.
 SimResult simulate_ge_evaluation(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
@@ -75,8 +129,7 @@ SimResult simulate_ge_evaluation(const Mesh& mesh, const UnitConfig& cfg, std::u
   r.factors = workload_factors(source);
   const std::uint64_t total = source.vertices();
   std::optional<PatchAssembly> patches;
-  const std::function<void(const PatchOut&)> on_patch =
-      patterns.displace.enabled() && hooks.on_patch ? displaced(hooks.on_patch, patterns.displace) : hooks.on_patch;
+  const std::function<void(const PatchOut&)> on_patch = AcceptedVertices::patch_sink(hooks, patterns);
   if (on_patch) patches.emplace(source, r.scaling, cfg.format, cfg.tess_factor, on_patch);
   Watchdog watchdog(run_cfg, unit.cpg_cycles());
   // The host's control points (cpg_mapping host): the float reference's, once per patch.
@@ -137,36 +190,14 @@ SimResult simulate_system(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t
   r.cpg_cycles = system.unit(0).cpg_cycles();
   r.factors = workload_factors(source);
   const std::uint64_t total = source.vertices();
-  OutputCheck output(mesh, source, cfg.format, patterns.d3d11 != nullptr);
-  std::optional<PatchAssembly> patches;
-  const std::function<void(const PatchOut&)> on_patch =
-      patterns.displace.enabled() && hooks.on_patch ? displaced(hooks.on_patch, patterns.displace) : hooks.on_patch;
-  if (on_patch) patches.emplace(source, r.scaling, cfg.format, cfg.tess_factor, on_patch);
-  std::optional<MeshErrors> mesh_errors;
-  std::optional<ArithmeticCheck> arithmetic;
-  if (hooks.measure_errors) {
-    mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags, patterns.d3d11, patterns.silhouette);
-    arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, patterns));
-  }
+  AcceptedVertices accepted_vertices(mesh, source, cfg, hooks, patterns, r.scaling);
   // A system's vertex can wait behind another unit's patches: the watchdog allows M times a unit's.
   Watchdog watchdog(run_cfg, system.unit(0).cpg_cycles() * cfg.units);
   std::uint64_t accepted = 0, cycle = 0;
   while (accepted < total) {
     if (system.tick(source.available(), source.front())) source.pop();
     for (const VertexFx& v : system.emitted()) {
-      output.check(v, cycle);
-      if (hooks.on_vertex) hooks.on_vertex(v);
-      if (mesh_errors) {
-        mesh_errors->add(v);
-        arithmetic->check(v);
-      }
-      if (patches) patches->add(v, output.index(), output.L(), output.patch_vertices());
-      if (v.last) {
-        if (hooks.vertices_done)
-          hooks.vertices_done->fetch_add(static_cast<std::uint64_t>(output.patch_vertices()), std::memory_order_relaxed);
-        if (hooks.cancel && hooks.cancel->load(std::memory_order_relaxed)) throw SimCancelled();
-      }
-      output.next();
+      accepted_vertices.take(v, cycle);
       ++accepted;
       watchdog.progress(cycle);
     }
@@ -188,9 +219,7 @@ SimResult simulate_system(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t
     r.gpe.vertices += sys.ports.back().vertices;
   }
   r.system = std::move(sys);
-  r.degenerate_patches = output.degenerate_patches();
-  r.zero_normals = output.zero_normals();
-  if (mesh_errors) r.errors = SimErrors{mesh_errors->result(), arithmetic->result()};
+  accepted_vertices.finish(r);
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -237,17 +266,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   const std::uint64_t total = source.vertices();
 
   // The run's concerns besides stepping the unit, each fed what it watches.
-  OutputCheck output(mesh, source, cfg.format, patterns.d3d11 != nullptr);
-  std::optional<PatchAssembly> patches;
-  const std::function<void(const PatchOut&)> on_patch =
-      patterns.displace.enabled() && hooks.on_patch ? displaced(hooks.on_patch, patterns.displace) : hooks.on_patch;
-  if (on_patch) patches.emplace(source, r.scaling, cfg.format, cfg.tess_factor, on_patch);
-  std::optional<MeshErrors> mesh_errors;
-  std::optional<ArithmeticCheck> arithmetic;
-  if (hooks.measure_errors) {
-    mesh_errors.emplace(mesh, r.scaling, cfg, cfg.cpg_tags, patterns.d3d11, patterns.silhouette);
-    arithmetic.emplace(ArithmeticCheck::for_mesh(mesh, r.scaling, cfg, patterns));
-  }
+  AcceptedVertices accepted_vertices(mesh, source, cfg, hooks, patterns, r.scaling);
   LateIntervals late;
   TimelineRecorder timeline(r.timeline);
   Watchdog watchdog(run_cfg, unit.cpg_cycles());
@@ -274,21 +293,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
     const UnitInputs& in = tb.inputs(unit);
     const GpeCycle& g = tb.gpe_cycle();
     if (g.accepted) {
-      const VertexFx& v = unit.vtx();
-      output.check(v, cycle);
-      if (hooks.on_vertex) hooks.on_vertex(v);
-      if (mesh_errors) {
-        mesh_errors->add(v);
-        arithmetic->check(v);
-      }
-      if (patches) patches->add(v, output.index(), output.L(), output.patch_vertices());
-      if (v.last) {
-        if (hooks.vertices_done)
-          hooks.vertices_done->fetch_add(static_cast<std::uint64_t>(output.patch_vertices()),
-                                         std::memory_order_relaxed);
-        if (hooks.cancel && hooks.cancel->load(std::memory_order_relaxed)) throw SimCancelled();
-      }
-      output.next();
+      accepted_vertices.take(unit.vtx(), cycle);
       ++accepted;
       watchdog.progress(cycle);
     }
@@ -309,9 +314,7 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   r.gpe = tb.gpe().stats();
   r.gpe_waited = late.gpe_waited();
   r.te_late = late.te_late();
-  r.degenerate_patches = output.degenerate_patches();
-  r.zero_normals = output.zero_normals();
-  if (mesh_errors) r.errors = SimErrors{mesh_errors->result(), arithmetic->result()};
+  accepted_vertices.finish(r);
   r.cpg_tag_cycles = unit.cpg_tag_cycles();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

@@ -99,9 +99,10 @@ TEST(UnitSystem, OutputIsTheSingleUnitsVertexForVertexAndTheCountsAddUp) {
             for (const GpeStats& p : s.ports) port_vertices += p.vertices;
             EXPECT_EQ(port_vertices, want.vertices.size());
             EXPECT_EQ(got.result.unit.cycles, s.stats.cycles * static_cast<std::uint64_t>(units));
-            if (d == Distribution::RoundRobin && batch == 1)  // in turn: the counts differ by one at most
+            if (d == Distribution::RoundRobin && batch == 1) {  // in turn: the counts differ by one at most
               for (std::uint64_t n : s.stats.unit_triangles)
                 EXPECT_LE(n, (want.result.unit.triangles_in + units - 1) / units) << describe(cfg);
+            }
           }
         }
       }
