@@ -1,23 +1,31 @@
 #!/usr/bin/env bash
 # Cost of one block of the unit on its own, by the generic flow of scripts/synth.sh (docs/rtl.md:
 # `synth -flatten`, flip-flops legalised, `stat -tech cmos`, `ltp -noff`): cells, flip-flops,
-# transistors, logic depth. For blocks synth.sh does not report separately (the DPG, the FSU).
+# transistors, logic depth. For blocks synth.sh does not report separately (the DPG, the FSU),
+# and, with -list system.f, the blocks of the system of units (scripts/system_cost.sh).
 #
-# Usage: scripts/block_cost.sh MODULE [RTL_DIR] [-chparam NAME VALUE ...]
+# Usage: scripts/block_cost.sh MODULE [RTL_DIR] [-list FILE.f ...] [-chparam NAME VALUE ...]
 #   RTL_DIR   where tess.f and the sources it lists are (default: rtl/); another checkout's
 #             rtl/ costs an older version of a block the same way.
+#   -list     a further source list in RTL_DIR, read after tess.f
 set -euo pipefail
-module=${1:?usage: block_cost.sh MODULE [RTL_DIR] [-chparam NAME VALUE ...]}
+module=${1:?usage: block_cost.sh MODULE [RTL_DIR] [-list FILE.f ...] [-chparam NAME VALUE ...]}
 shift
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 rtl="$root/rtl"
-if (($#)) && [[ $1 != -chparam ]]; then rtl=$1; shift; fi
+if (($#)) && [[ $1 != -chparam && $1 != -list ]]; then rtl=$1; shift; fi
+lists="tess.f"
 chparam=""
 while (($#)); do
-  [[ $1 == -chparam && $# -ge 3 ]] || { echo "block_cost.sh: expected -chparam NAME VALUE" >&2; exit 2; }
-  chparam+=" -set $2 $3"; shift 3
+  case $1 in
+    -list) [[ $# -ge 2 ]] || { echo "block_cost.sh: -list needs a file" >&2; exit 2; }; lists+=" $2"; shift 2 ;;
+    -chparam) [[ $# -ge 3 ]] || { echo "block_cost.sh: expected -chparam NAME VALUE" >&2; exit 2; }
+              chparam+=" -set $2 $3"; shift 3 ;;
+    *) echo "block_cost.sh: unexpected '$1' (expected -list FILE.f or -chparam NAME VALUE)" >&2; exit 2 ;;
+  esac
 done
-sources=$(sed -e '/^ *\/\//d' -e '/^ *$/d' -e "s|^|$rtl/|" "$rtl/tess.f" | tr '\n' ' ')
+sources=""
+for list in $lists; do sources+=" $(sed -e '/^ *\/\//d' -e '/^ *$/d' -e "s|^|$rtl/|" "$rtl/$list" | tr '\n' ' ')"; done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 yosys -q -l "$work/log" -p "read_verilog -sv $sources; ${chparam:+chparam$chparam $module;} \
@@ -28,4 +36,4 @@ cells=$(sed -n 's/^ *Number of cells: *\([0-9]*\)/\1/p' "$work/cells" | tail -1)
 flops=$({ grep -E '^\s+\$_(S?DFF|DFFE|SDFFE|SDFFCE|ALDFF|DFFSR|DLATCH)' "$work/cells" || true; } | awk '{s += $2} END {print s + 0}')
 transistors=$(sed -n 's/.*Estimated number of transistors: *\([0-9+]*\).*/\1/p' "$work/cmos" | tail -1)
 depth=$(sed -n 's/.*Longest topological path in .* (length=\([0-9]*\)).*/\1/p' "$work/ltp" | tail -1)
-echo "$module: cells $cells, flip-flops $flops, transistors $transistors, depth $depth"
+echo "$module${chparam:+ ($chparam )}: cells $cells, flip-flops $flops, transistors $transistors, depth $depth"
