@@ -50,6 +50,7 @@ struct SimArgs {
   bool no_fast_forward = false;
   bool quiet = false;
   std::string chunks = "1";  // K, or auto
+  std::string threads = "auto";  // T, or auto
   UnitPatternOptions pattern;
 };
 
@@ -119,6 +120,18 @@ int parse_chunks(const std::string& text) {
     throw InputError("command line", "--chunks",
                      "'" + text + "' is not a number of chunks (1.." + std::to_string(sim::kMaxChunks) + ") or auto");
   return k;
+}
+
+// --threads: a count (at most one per unit is used), or auto: one per hardware thread unless
+// chunks run on them already.
+int system_threads(const std::string& text, const sim::UnitConfig& cfg, int chunks) {
+  if (text == "auto") return chunks != 1 ? 1 : static_cast<int>(std::min(std::max(1u, std::thread::hardware_concurrency()), 64u));
+  int t = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), t);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || t < 1 || t > 64)
+    throw InputError("command line", "--threads", "'" + text + "' is not a number of threads (1..64) or auto");
+  (void)cfg;
+  return t;
 }
 
 void run_sim(const SimArgs& a, const ConfigFlags& flags) {
@@ -203,6 +216,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   sim::SimHooks hooks;
   hooks.measure_errors = a.errors;
   hooks.fast_forward = !a.no_fast_forward;
+  hooks.system_threads = system_threads(a.threads, cfg, chunks);
   std::unique_ptr<MeshWriter> writer;
   std::unique_ptr<WeldingWriter> welder;
   std::vector<WeldKey> keys;
@@ -348,6 +362,11 @@ void register_sim(CLI::App& app) {
                       ", or auto: one per hardware thread) simulated in parallel, each on a unit fresh from "
                       "reset; the same output, statistics summed, cycles within a bound of one run's "
                       "(docs/statistics.md, Chunked runs)")
+      ->capture_default_str();
+  sub->add_option("--threads", args->threads,
+                  "T: threads that clock a system of --units M units (1..64, at most M are used; or auto: one per "
+                  "hardware thread, 1 with --chunks); every cycle and bit the same whatever T "
+                  "(docs/microarchitecture.md §13, Threaded runs)")
       ->capture_default_str();
   sub->add_flag("--no-fast-forward", args->no_fast_forward,
                 "clock every cycle one by one instead of taking the cycles in which nothing moves at once "

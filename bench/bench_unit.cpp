@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "model/factors.hpp"
 #include "model/mesh_io.hpp"
 #include "sim/config.hpp"
 #include "sim/host.hpp"
@@ -66,6 +67,42 @@ void BM_SimulateMesh(benchmark::State& state) {
   state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(vertices), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SimulateMesh)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// tessim sim --units M --threads T on the real mesh: M units at K = 1 with M ports, L = 16 and a
+// buffer that never fills (the units run ahead of the coordinator), and an adaptive close view at
+// 2 pixels per segment with R = 1024 (the buffer full most of the time: the run goes serial).
+// Every simulated cycle is the same whatever T; the counters give the simulator's speed.
+void BM_SystemMesh(benchmark::State& state) {
+  UnitConfig cfg = config(2, 1, 16);
+  cfg.units = static_cast<int>(state.range(0));
+  cfg.ge_ports = cfg.units;
+  const bool full_buffer = state.range(2) != 0;
+  cfg.reorder_slots = full_buffer ? 1024 : 65536;
+  cfg.validate("benchmark");
+  TessSettings view;
+  view.kind = PatternKind::D3D11;
+  view.source = FactorSource::Adaptive;
+  view.camera.eye = {1.2, 1.5, -2.2};
+  view.camera.width = 800;
+  view.camera.height = 600;
+  view.pixels_per_segment = 2.0;
+  const MeshPatterns patterns = full_buffer ? MeshPatterns(&view) : MeshPatterns();
+  SimHooks hooks;
+  hooks.system_threads = static_cast<int>(state.range(1));
+  std::uint64_t cycles = 0, vertices = 0;
+  for (auto _ : state) {
+    const SimResult r = simulate(wuson(), cfg, hooks, patterns);
+    cycles += r.system->stats.cycles;
+    vertices += r.unit.vertices_out;
+  }
+  state.counters["cycles/s"] = benchmark::Counter(static_cast<double>(cycles), benchmark::Counter::kIsRate);
+  state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(vertices), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SystemMesh)
+    ->ArgNames({"M", "threads", "full_buffer"})
+    ->ArgsProduct({{2, 4, 8, 16}, {1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

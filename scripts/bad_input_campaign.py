@@ -236,6 +236,7 @@ def option_cases(mesh: str) -> list[Case]:
         (["sim", mesh], "--int-latency", ["0", "-1"]),
         (["sim", mesh], "--gpe-cycles", ["0", "-1"]),
         (["sim", mesh], "--chunks", ["0", "-1"]),
+        (["sim", mesh, "--units", "2"], "--threads", ["0", "-1", "65"]),
         (["cosim", mesh], "--int-blocks", ["0", "-1", "999"]),
         (["cosim", mesh], "--random", ["0", "-1"]),
         (["cosim", mesh], "--seed", ["-1"]),

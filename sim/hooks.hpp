@@ -42,6 +42,10 @@ struct SimHooks {
   // Take the cycles in which nothing moves at once (exact; docs/microarchitecture.md §11). Off
   // whenever an observer watches the run cycle by cycle.
   bool fast_forward = true;
+  // A system of several units (UnitConfig::units > 1): the threads that clock it, the calling one
+  // included (sim/system_threads.hpp; every cycle and bit as with one). 1: one thread; at most
+  // one per unit.
+  int system_threads = 1;
   // Set by another thread to stop the run at the next patch boundary (SimCancelled is thrown):
   // the other chunks of a chunked run after one of them failed.
   const std::atomic<bool>* cancel = nullptr;

@@ -1,5 +1,6 @@
 #include "sim/simulate.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -13,6 +14,8 @@
 #include "sim/late_intervals.hpp"
 #include "sim/output_check.hpp"
 #include "sim/patch_assembly.hpp"
+#include "sim/system.hpp"
+#include "sim/system_threads.hpp"
 #include "sim/testbench.hpp"
 #include "sim/timeline_recorder.hpp"
 #include "sim/watchdog.hpp"
@@ -194,15 +197,25 @@ SimResult simulate_system(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t
   // A system's vertex can wait behind another unit's patches: the watchdog allows M times a unit's.
   Watchdog watchdog(run_cfg, system.unit(0).cpg_cycles() * cfg.units);
   std::uint64_t accepted = 0, cycle = 0;
-  while (accepted < total) {
-    if (system.tick(source.available(), source.front())) source.pop();
-    for (const VertexFx& v : system.emitted()) {
-      accepted_vertices.take(v, cycle);
-      ++accepted;
-      watchdog.progress(cycle);
+  auto run = [&](auto&& tick) {
+    while (accepted < total) {
+      if (tick(source.available(), source.front())) source.pop();
+      for (const VertexFx& v : system.emitted()) {
+        accepted_vertices.take(v, cycle);
+        ++accepted;
+        watchdog.progress(cycle);
+      }
+      ++cycle;
+      watchdog.check(cycle);
     }
-    ++cycle;
-    watchdog.check(cycle);
+  };
+  const int threads = std::min(hooks.system_threads, cfg.units);
+  if (threads > 1) {
+    ThreadedSystem threaded(system, threads);
+    run([&](bool tri_valid, const TriangleFx& tri) { return threaded.tick(tri_valid, tri); });
+    threaded.finish();
+  } else {
+    run([&](bool tri_valid, const TriangleFx& tri) { return system.tick(tri_valid, tri); });
   }
   SystemResult sys;
   sys.stats = system.stats();

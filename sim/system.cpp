@@ -45,6 +45,7 @@ UnitSystem::UnitSystem(const UnitConfig& cfg, int ge_cycles_per_vertex) : cfg_(c
   te_weight_ = static_cast<std::uint64_t>(int_ops::ops_per_vertex(cfg.normals)) * static_cast<std::uint64_t>(cfg.cpg.copies);
   emitted_.reserve(static_cast<std::size_t>(cfg.ge_ports));
   admit_.assign(m, 0);
+  outputs_.resize(m);
   stats_.unit_triangles.assign(m, 0);
   stats_.unit_vertices.assign(m, 0);
 }
@@ -56,7 +57,7 @@ bool UnitSystem::idle() const {
   return true;
 }
 
-int UnitSystem::choose(const TriangleFx& tri) const {
+int UnitSystem::choose(const TriangleFx& tri, const UnitOutputs* outputs) const {
   if (batch_left_ > 0) return batch_unit_;
   switch (cfg_.distribution) {
     case Distribution::RoundRobin: return next_rr_;
@@ -65,7 +66,7 @@ int UnitSystem::choose(const TriangleFx& tri) const {
       // index on a tie. None ready: the round-robin turn (the triangle waits for it).
       int best = -1;
       for (int u = 0; u < units(); ++u)
-        if (units_[static_cast<std::size_t>(u)].tri_ready() &&
+        if (outputs[u].tri_ready &&
             (best < 0 || pending_vertices_[static_cast<std::size_t>(u)] < pending_vertices_[static_cast<std::size_t>(best)]))
           best = u;
       return best < 0 ? next_rr_ : best;
@@ -80,7 +81,7 @@ int UnitSystem::choose(const TriangleFx& tri) const {
       std::uint64_t best_finish = 0;
       for (int u = 0; u < units(); ++u) {
         const auto i = static_cast<std::size_t>(u);
-        if (!units_[i].tri_ready()) continue;
+        if (!outputs[u].tri_ready) continue;
         const std::uint64_t finish = std::max((pending_patches_[i] + 1) * cpg_weight_,
                                               (pending_vertices_[i] + vertices) * te_weight_);
         if (best < 0 || finish < best_finish) {
@@ -122,6 +123,33 @@ VertexFx UnitSystem::pop(int unit) {
 }
 
 bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
+  for (int u = 0; u < units(); ++u) {
+    const Unit& unit = units_[static_cast<std::size_t>(u)];
+    UnitOutputs& o = outputs_[static_cast<std::size_t>(u)];
+    o.tri_ready = unit.tri_ready();
+    o.vtx_valid = unit.vtx_valid();
+    o.vtx = o.vtx_valid ? &unit.vtx() : nullptr;
+  }
+  const bool take = coordinate(tri_valid, tri, outputs_.data());
+  // The units' clock edges (one idle input kept: a TriangleFx is too large to clear every cycle).
+  idle_inputs_.tri_valid = false;
+  for (int u = 0; u < units(); ++u) {
+    const auto i = static_cast<std::size_t>(u);
+    if (dispatched_to_ == u) {
+      UnitInputs in;
+      in.tri_valid = true;
+      in.tri = tri;
+      in.vtx_ready = admit_[i] != 0;
+      units_[i].tick(in);
+    } else {
+      idle_inputs_.vtx_ready = admit_[i] != 0;
+      units_[i].tick(idle_inputs_);
+    }
+  }
+  return take;
+}
+
+bool UnitSystem::coordinate(bool tri_valid, const TriangleFx& tri, const UnitOutputs* outputs) {
   ++stats_.cycles;
   const int r = cfg_.reorder_slots;
   const int occupancy_at_start = occupancy_;
@@ -132,10 +160,9 @@ bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
   // slot is free, any other unit's while two are (one stays for the oldest patch).
   int admitted = 0;
   for (int u = 0; u < units(); ++u) {
-    const Unit& unit = units_[static_cast<std::size_t>(u)];
     admit_[static_cast<std::size_t>(u)] = 0;
-    if (!unit.vtx_valid()) continue;
-    const bool oldest = order_count_ > 0 && order_[order_head_].unit == u && order_[order_head_].id == unit.vtx().id;
+    if (!outputs[u].vtx_valid) continue;
+    const bool oldest = order_count_ > 0 && order_[order_head_].unit == u && order_[order_head_].id == outputs[u].vtx->id;
     if (occupancy_at_start + admitted < (oldest ? r : r - 1)) {
       admit_[static_cast<std::size_t>(u)] = 1;
       ++admitted;
@@ -165,8 +192,9 @@ bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
   }
 
   // ---- The distributor.
-  const int target = tri_valid ? choose(tri) : 0;
-  const bool take = tri_valid && units_[static_cast<std::size_t>(target)].tri_ready();
+  const int target = tri_valid ? choose(tri, outputs) : 0;
+  const bool take = tri_valid && outputs[target].tri_ready;
+  dispatched_to_ = take ? target : -1;
   if (tri_valid && !take) ++stats_.dispatch_stalls;
   if (take) {
     const auto t = static_cast<std::size_t>(target);
@@ -185,22 +213,15 @@ bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
     if (--batch_left_ == 0) next_rr_ = target + 1 == units() ? 0 : target + 1;
   }
 
-  // ---- The units' clock edges; each admitted vertex enters its unit's queue.
+  // ---- Each admitted vertex enters its unit's queue at the clock edge.
   for (int u = 0; u < units(); ++u) {
     const auto i = static_cast<std::size_t>(u);
-    Unit& unit = units_[i];
-    UnitInputs in;
-    in.tri_valid = take && target == u;
-    if (in.tri_valid) in.tri = tri;
-    in.vtx_ready = admit_[i] != 0;
-    if (in.vtx_ready) {
-      const VertexFx& v = unit.vtx();
-      push(u, v);
-      ++stats_.unit_vertices[i];
-      --pending_vertices_[i];
-      if (v.last) --pending_patches_[i];
-    }
-    unit.tick(in);
+    if (admit_[i] == 0) continue;
+    const VertexFx& v = *outputs[u].vtx;
+    push(u, v);
+    ++stats_.unit_vertices[i];
+    --pending_vertices_[i];
+    if (v.last) --pending_patches_[i];
   }
   return take;
 }

@@ -22,6 +22,14 @@
 
 namespace tessim::sim {
 
+// What the coordinating logic (distributor, buffer, ports) reads of a unit in a cycle: its
+// outputs at the start of the cycle (sim::Unit's, from the registered state).
+struct UnitOutputs {
+  bool tri_ready = false;
+  bool vtx_valid = false;
+  const VertexFx* vtx = nullptr;  // while vtx_valid
+};
+
 // The system's own statistics (the units' and the ports' are kept by them).
 struct SystemStats {
   std::uint64_t cycles = 0;
@@ -45,6 +53,16 @@ class UnitSystem {
 
   // One cycle: `tri` is offered when tri_valid. Returns whether the distributor took it.
   bool tick(bool tri_valid, const TriangleFx& tri);
+  // The same cycle split in two, for a driver that clocks the units elsewhere (sim/system_threads.hpp):
+  // coordinate() is everything but the units' clock edges, from the units' outputs at the start of
+  // the cycle (one per unit); the units' inputs of the cycle are then dispatched_to() (the unit
+  // that takes `tri`, or -1) and admitted(u) (its vertex enters the buffer: vtx_ready).
+  bool coordinate(bool tri_valid, const TriangleFx& tri, const UnitOutputs* outputs);
+  int dispatched_to() const { return dispatched_to_; }
+  bool admitted(int u) const { return admit_[static_cast<std::size_t>(u)] != 0; }
+  Unit& unit(int u) { return units_[static_cast<std::size_t>(u)]; }
+  int occupancy() const { return occupancy_; }
+  const UnitConfig& config() const { return cfg_; }
   // The vertices the ports took in the cycle last ticked, in stream order.
   const std::vector<VertexFx>& emitted() const { return emitted_; }
   bool idle() const;
@@ -68,7 +86,7 @@ class UnitSystem {
     std::uint32_t id = 0;
   };
 
-  int choose(const TriangleFx& tri) const;  // the unit the distributor wants for `tri`
+  int choose(const TriangleFx& tri, const UnitOutputs* outputs) const;  // the unit the distributor wants for `tri`
   void push(int unit, const VertexFx& v);
   VertexFx pop(int unit);
 
@@ -89,6 +107,9 @@ class UnitSystem {
   std::uint64_t cpg_weight_ = 0, te_weight_ = 0;  // earliest_finish: (C + 1) N and ops Mc
   std::vector<VertexFx> emitted_;
   std::vector<std::uint8_t> admit_;
+  std::vector<UnitOutputs> outputs_;  // tick()'s view of the units
+  UnitInputs idle_inputs_;            // a unit's inputs in a cycle without a triangle for it
+  int dispatched_to_ = -1;
   SystemStats stats_;
 };
 

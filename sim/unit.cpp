@@ -70,13 +70,25 @@ bool Unit::idle() const {
   return tri_fifo_.empty() && !cpg_.busy() && buffers_.empty() && te_.contexts_in_use() == 0 && vtx_fifo_.empty();
 }
 
+void Unit::check_factors(const TriangleFx& tri) const {
+  if ((tri.pattern == TriPattern::uniform ? tri.L < 1 || tri.L > kMaxTessFactor
+                                          : hw_.format.bary_bits < 16 || !tri_pattern_problem(tri).empty()) ||
+      !alpha_in_contract(tri, hw_.format))
+    throw_bad_factor(tri, hw_.format);
+}
+
+void Unit::inject(const TriangleFx& tri) {
+  if (tri_fifo_.full()) throw std::logic_error("Unit: triangle injected into a full TRI FIFO");
+  check_factors(tri);
+  tri_fifo_.tail() = tri;
+  tri_fifo_.commit(true, false);
+  counters_.add_event(RunCounter::TrianglesIn);
+}
+
 void Unit::tick(const UnitInputs& in) {
   // ---- Every decision of the cycle, from the registered state and the inputs.
   const bool tri_push = in.tri_valid && !tri_fifo_.full();
-  if (tri_push && ((in.tri.pattern == TriPattern::uniform ? in.tri.L < 1 || in.tri.L > kMaxTessFactor
-                                                           : hw_.format.bary_bits < 16 || !tri_pattern_problem(in.tri).empty()) ||
-                   !alpha_in_contract(in.tri, hw_.format)))
-    throw_bad_factor(in.tri, hw_.format);
+  if (tri_push) check_factors(in.tri);
   const bool vtx_pop = in.vtx_ready && !vtx_fifo_.empty();
   const bool head_done = te_.head_done();
   const bool retire = head_done && !vtx_fifo_.full();

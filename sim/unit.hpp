@@ -63,6 +63,12 @@ class Unit {
   // The clock edge: one cycle with these inputs.
   void tick(const UnitInputs& in);
 
+  // A triangle pushed into the TRI FIFO between clock edges, for a driver that runs the unit
+  // ahead of the logic feeding it (sim/system_threads.hpp): the push of a cycle already past,
+  // exact as long as the unit has not yet seen its TRI FIFO empty since that cycle. Counted in
+  // TrianglesIn like a push by tick(). The FIFO must not be full.
+  void inject(const TriangleFx& tri);
+
   // Fast-forward (docs/microarchitecture.md §11). quiet_cycles(in): how many cycles in a row,
   // from now, with these inputs held, would move no data between blocks (no push, pop,
   // allocation, retirement, CPG accept or write) and change only counters, the CPG's countdown
@@ -93,6 +99,8 @@ class Unit {
   bool idle() const;  // nothing buffered or in flight anywhere in the unit
 
  private:
+  void check_factors(const TriangleFx& tri) const;  // throws on a triangle outside the input contract
+
   // The blocks of rtl/tess_unit.sv, in data-flow order.
   HardwareConfig hw_;
   Fifo<TriangleFx> tri_fifo_;

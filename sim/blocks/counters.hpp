@@ -48,6 +48,9 @@ class Counters {
     cpg_[cpg] += cycles;
   }
 
+  // A run event counted apart from its cycle (a triangle injected by a threaded system run).
+  void add_event(RunCounter c) { ++run_[static_cast<std::size_t>(c)]; }
+
   const UnitCounters& stats() const {
     UnitCounters& s = stats_;
 #define TESSIM_RUN_STAT(BLOCK, ID, KEY, ...) s.KEY = run_[static_cast<std::size_t>(RunCounter::ID)];

@@ -1,0 +1,71 @@
+// `tessim sim --units M --threads T` (sim/system_threads.hpp): the mesh file and the statistics of
+// a system of units are the same bytes whatever the thread count (the wall time aside), and the
+// thread count is refused where it makes no sense.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/run_tessim.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace tessim {
+namespace {
+
+const char* const kWuson = "/usr/share/assimp/models/PLY/Wuson.ply";
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST(UnitsCli, SameMeshAndStatisticsOnAnyThreadCount) {
+  testing::TempDir dir;
+  // Uniform factors with a roomy buffer (the units run ahead), and adaptive ones with a small
+  // buffer under random stalls (the run goes serial while the buffer is full).
+  const std::vector<std::vector<std::string>> configs = {
+      {"-L", "5", "--units", "4", "--ge-ports", "4", "--gpe-cycles", "1", "--reorder-slots", "4096"},
+      {"--adaptive", "screen", "--camera", "eye=1.2,1.5,-2.2", "--units", "3", "--ge-ports", "2",
+       "--reorder-slots", "64", "--gpe-stall-prob", "0.2", "--distribution", "least_loaded"}};
+  for (const auto& config : configs) {
+    std::string want_mesh;
+    nlohmann::json want_stats;
+    for (const std::string threads : {"1", "2", "3", "auto"}) {
+      const auto mesh = dir.path() / ("out" + threads + ".ply");
+      const auto stats = dir.path() / ("stats" + threads + ".json");
+      std::vector<std::string> args = {"sim", kWuson, "--threads", threads, "-o", mesh.string(), "--stats", stats.string()};
+      args.insert(args.end(), config.begin(), config.end());
+      const auto r = testing::run_tessim(args, dir.path());
+      ASSERT_EQ(r.status, 0) << r.err;
+      std::ifstream in(stats);
+      nlohmann::json j = nlohmann::json::parse(in);
+      j.erase("wall_seconds");
+      if (threads == "1") {
+        want_mesh = slurp(mesh);
+        want_stats = j;
+        ASSERT_GT(want_mesh.size(), 10000u);
+        EXPECT_TRUE(j.contains("system"));
+      } else {
+        EXPECT_EQ(slurp(mesh), want_mesh) << threads << " threads";
+        EXPECT_EQ(j, want_stats) << threads << " threads";
+      }
+    }
+  }
+}
+
+TEST(UnitsCli, RefusesAThreadCountOutOfRange) {
+  testing::TempDir dir;
+  for (const char* bad : {"0", "65", "two", "1.5"}) {
+    const auto r = testing::run_tessim({"sim", kWuson, "-L", "2", "--units", "2", "--threads", bad}, dir.path());
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace tessim
