@@ -5,14 +5,16 @@
 On the camera path of scripts/silhouette_quality.py (8 views around Wuson and sphereWithHole at one
 bounding-box diagonal, 800x600, fov 40) with the screen rule (6 pixels per segment), runs `tessim
 sim --units M` for M = 1, 2, 4, 8, 16 units with P = M geometry-engine ports at K = 1, every
-distribution policy and reassembly buffers of R = 16 .. 16384 slots. Each unit keeps up with small
+distribution policy and reassembly buffers of R = 16 .. 16384 slots, in stream order and, for
+least_loaded, unordered (what keeping the order costs). Each unit keeps up with small
 patches on its own (load-balancing.md §13's fast unit: N = 14, V = 16, eight control-point buffers
 and ten copies of the three-lane CPG of 4 bits a cycle, INT latency 1).
 
-Writes OUT/study.csv (one row per mesh, view, M, policy and R: vertices, patches, cycles,
-throughput, the limit, the largest buffer occupancy, the stalls), OUT/study.md (per mesh, M and policy:
-the worst view's and the mean vertices per cycle against R, and the smallest R that keeps every
-view at 90 % of M) and OUT/scaleout.png/.svg (throughput against M; throughput against R).
+Writes OUT/study.csv (one row per mesh, view, M, policy, reassembly and R: vertices, patches,
+cycles, throughput, the limit, the largest buffer occupancy, the stalls), OUT/study.md (per mesh, M
+and policy: the worst view's and the mean vertices per cycle against R, and the smallest R that
+keeps every view at 90 % of M; then ordered against unordered) and OUT/scaleout.png/.svg
+(throughput against M; throughput against R, ordered and unordered).
 
 Usage: scaleout_study.py --tessim build/bin/tessim [--out docs/results/scaleout] [--jobs 2] [--replot]
 """
@@ -33,6 +35,7 @@ UNIT = {"gpe_cycles": 1, "int_blocks": 14, "te_contexts": 16, "cp_buffers": 8, "
         "cpg_copies": 10}
 MS = [1, 2, 4, 8, 16]
 POLICIES = ["round_robin", "least_loaded", "earliest_finish"]
+UNORDERED_POLICY = "least_loaded"  # without order to keep, the balancing policy
 SLOTS = [16, 64, 256, 1024, 4096, 16384]
 TARGET = 0.9
 
@@ -41,8 +44,9 @@ def run_point(tessim, point, scratch):
     eye, target = point["camera"]
     cam = f"eye={quality.fmt(eye)},target={quality.fmt(target)},fov={FOV}"
     params = dict(UNIT, units=point["M"], ge_ports=point["M"], distribution=point["policy"],
-                  reorder_slots=point["R"])
-    cmd = [tessim, "sim", quality.MESHES[point["mesh"]], "--quiet", "--adaptive", "screen", "--camera", cam,
+                  reorder_slots=point["R"], reassembly=point["reassembly"])
+    # One thread a run: the points run side by side already.
+    cmd = [tessim, "sim", quality.MESHES[point["mesh"]], "--quiet", "--threads", "1", "--adaptive", "screen", "--camera", cam,
            "--viewport", SIZE, "--pixels-per-segment", "6"]
     for key, value in params.items():
         cmd += ["--" + key.replace("_", "-"), str(value)]
@@ -51,7 +55,8 @@ def run_point(tessim, point, scratch):
     with open(stats) as f:
         s = json.load(f)
     os.remove(stats)
-    row = {"mesh": point["mesh"], "view": point["view"], "M": point["M"], "policy": point["policy"], "R": point["R"],
+    row = {"mesh": point["mesh"], "view": point["view"], "M": point["M"], "policy": point["policy"],
+           "reassembly": point["reassembly"], "R": point["R"],
            "vertices": s["vertices_out"], "patches": s["triangles_in"], "cycles": s["cycles"],
            "throughput": s["throughput"], "limit": s["bottleneck"].split(":")[0]}
     system = s.get("system")
@@ -72,7 +77,10 @@ def simulate(tessim, out_csv, jobs):
                 for policy in POLICIES if m > 1 else POLICIES[:1]:
                     for r in SLOTS if m > 1 else SLOTS[-1:]:
                         points.append({"index": len(points), "mesh": mesh, "view": view, "camera": camera, "M": m,
-                                       "policy": policy, "R": r})
+                                       "policy": policy, "reassembly": "ordered", "R": r})
+                for r in SLOTS if m > 1 else []:
+                    points.append({"index": len(points), "mesh": mesh, "view": view, "camera": camera, "M": m,
+                                   "policy": UNORDERED_POLICY, "reassembly": "unordered", "R": r})
     with tempfile.TemporaryDirectory(prefix="tessim-scaleout-") as scratch:
         with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
             rows = list(pool.map(lambda p: run_point(tessim, p, scratch), points))
@@ -89,8 +97,11 @@ def simulate(tessim, out_csv, jobs):
 def report(out_csv, out_dir):
     with open(out_csv) as f:
         rows = list(csv.DictReader(f))
-    groups, by_mesh = {}, {}
+    groups, by_mesh, unordered = {}, {}, {}
     for r in rows:
+        if r["reassembly"] == "unordered":
+            unordered.setdefault((r["mesh"], int(r["M"]), int(r["R"])), []).append(r)
+            continue
         groups.setdefault((int(r["M"]), r["policy"], int(r["R"])), []).append(r)
         by_mesh.setdefault((r["mesh"], int(r["M"]), r["policy"], int(r["R"])), []).append(r)
     lines = ["<!-- scripts/scaleout_study.py: regenerate, do not edit -->", "",
@@ -119,13 +130,32 @@ def report(out_csv, out_dir):
                     cells = ["–"] * (len(SLOTS) - 1) + cells
                 lines.append(f"| {m} | {policy} | " + " | ".join(cells) + f" | {smallest if smallest else 'none'} |")
         lines.append("")
+    lines += ["**What keeping the order costs**: the worst view's vertices per cycle, in stream order with the "
+              "better policy at that R / unordered (least_loaded; the ports take any unit's vertex), and the "
+              f"smallest R that keeps every view at {TARGET:.0%} of M each way.", ""]
+    for mesh in quality.MESHES:
+        lines += [f"**{mesh}**", "",
+                  "| M | " + " | ".join(f"R = {r}" for r in SLOTS) + " | smallest R, ordered / unordered |",
+                  "|---|" + "---|" * len(SLOTS) + "---|"]
+        for m in MS[1:]:
+            cells, smallest = [], [None, None]
+            for r in SLOTS:
+                ordered = max(min(float(x["throughput"]) for x in by_mesh[(mesh, m, p, r)]) for p in POLICIES)
+                free = min(float(x["throughput"]) for x in unordered[(mesh, m, r)])
+                cells.append(f"{ordered:.3f} / {free:.3f}")
+                for i, worst in enumerate((ordered, free)):
+                    if worst >= TARGET * m and smallest[i] is None:
+                        smallest[i] = r
+            lines.append(f"| {m} | " + " | ".join(cells) + " | " +
+                         " / ".join(str(x) if x else "none" for x in smallest) + " |")
+        lines.append("")
     with open(os.path.join(out_dir, "study.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print(f"scaleout_study.py: {os.path.join(out_dir, 'study.md')}", file=sys.stderr)
-    plot(groups, out_dir)
+    plot(groups, unordered, out_dir)
 
 
-def plot(groups, out_dir):
+def plot(groups, unordered, out_dir):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -145,13 +175,17 @@ def plot(groups, out_dir):
     left.set_ylabel("vertices per cycle (mean over the views)")
     left.legend(fontsize=8)
     left.grid(True, which="both", alpha=0.3)
-    for m in MS[1:]:
+    for i, m in enumerate(MS[1:]):
+        colour = f"C{i}"
         ys = [min(float(x["throughput"]) for x in groups[(m, "round_robin", r)]) / m for r in SLOTS]
-        right.plot(SLOTS, ys, "o-", label=f"M = {m}")
+        right.plot(SLOTS, ys, "o-", color=colour, label=f"M = {m}")
+        free = [min(float(x["throughput"]) for mesh in quality.MESHES for x in unordered[(mesh, m, r)]) / m
+                for r in SLOTS]
+        right.plot(SLOTS, free, "s--", color=colour, alpha=0.6, label=f"M = {m}, unordered")
     right.axhline(TARGET, color="grey", linestyle=":")
     right.set_xscale("log", base=2)
     right.set_xlabel("reassembly buffer R (vertex slots)")
-    right.set_ylabel("worst view: vertices per cycle / M (round_robin)")
+    right.set_ylabel("worst view: vertices per cycle / M\n(round_robin; dashed: unordered, least_loaded)")
     right.legend(fontsize=8)
     right.grid(True, which="both", alpha=0.3)
     fig.tight_layout()

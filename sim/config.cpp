@@ -74,6 +74,8 @@ std::string to_string(Distribution d) {
   return "?";
 }
 
+std::string to_string(Reassembly r) { return r == Reassembly::Unordered ? "unordered" : "ordered"; }
+
 void UnitConfig::validate(const std::string& source) const {
   for (const ParamSpec& p : unit_params()) check_range(source, p, *this);
   // Checks across parameters, beyond the ranges of the table.

@@ -38,6 +38,13 @@ enum class Distribution {
   EarliestFinish, // to the unit whose predicted drain time, max(CPG backlog, vertex backlog), is least
 };
 
+// Whether the system's reassembly buffer gives the ports the vertices in stream order (the
+// hardware's contract) or in any order (a study's bound: what keeping the order costs).
+enum class Reassembly {
+  Ordered,    // the oldest patch's vertices first; one slot kept for them
+  Unordered,  // any unit's vertex, the units served in turn; every slot for anyone
+};
+
 // What a chip is: a different value is a different RTL build (rtl/tess_pkg.sv parameters) or a
 // different unit. Blocks of the unit are built from this part only.
 struct HardwareConfig {
@@ -58,6 +65,7 @@ struct HardwareConfig {
   int units = 1;              // M
   int reorder_slots = 256;    // R: vertex slots of the reassembly buffer, shared by the units
   Distribution distribution = Distribution::RoundRobin;
+  Reassembly reassembly = Reassembly::Ordered;
   int dispatch_batch = 1;     // consecutive triangles the distributor sends to the same unit
   bool operator==(const HardwareConfig&) const = default;
 };
@@ -114,5 +122,6 @@ nlohmann::json to_json(const UnitConfig& cfg);
 std::string to_string(CpgMapping m);
 std::string to_string(Evaluation e);
 std::string to_string(Distribution d);
+std::string to_string(Reassembly r);
 
 }  // namespace tessim::sim

@@ -24,6 +24,7 @@ constexpr std::array<const char*, 4> kNormalChoices{"quadratic", "reflect", "lin
 constexpr std::array<const char*, 3> kCpgChoices{"dedicated", "gpe", "host"};
 constexpr std::array<const char*, 2> kEvaluationChoices{"unit", "gpe"};
 constexpr std::array<const char*, 3> kDistributionChoices{"round_robin", "least_loaded", "earliest_finish"};
+constexpr std::array<const char*, 2> kReassemblyChoices{"ordered", "unordered"};
 
 // get/set of a plain field of UnitConfig (FIELD is an expression on `c`).
 #define TESSIM_PARAM_FIELD(FIELD)                                                  \
@@ -36,7 +37,7 @@ constexpr auto E = ParamKind::Environment;
 constexpr auto W = ParamKind::Workload;
 constexpr auto I = ParamType::Int;
 
-const std::array<ParamSpec, 31> kParams{{
+const std::array<ParamSpec, 32> kParams{{
     {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
      "tessellation factor: segments per edge, the same for every triangle of a run",
      TESSIM_PARAM_FIELD(tess_factor)},
@@ -133,6 +134,13 @@ const std::array<ParamSpec, 31> kParams{{
        c.distribution = d == "least_loaded"      ? Distribution::LeastLoaded
                         : d == "earliest_finish" ? Distribution::EarliestFinish
                                                  : Distribution::RoundRobin;
+     }},
+    {"reassembly", "--reassembly", "", nullptr, "", H, ParamType::Enum, 0, 0, kReassemblyChoices, "",
+     "ordered: the ports take the vertices in stream order (the unit's output); unordered: any unit's vertex, "
+     "a bound for what keeping the order costs (the output file is put back in order by the simulator)",
+     [](const UnitConfig& c) -> json { return to_string(c.reassembly); },
+     [](UnitConfig& c, const json& v) {
+       c.reassembly = v.get<std::string>() == "unordered" ? Reassembly::Unordered : Reassembly::Ordered;
      }},
     {"dispatch_batch", "--dispatch-batch", "", nullptr, "", H, I, 1, 64, {}, "triangles",
      "consecutive triangles the distributor sends to the same unit before it chooses again",

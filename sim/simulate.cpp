@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
+#include <unordered_map>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -180,6 +182,45 @@ SimResult simulate_ge_evaluation(const Mesh& mesh, const UnitConfig& cfg, std::u
   return r;
 }
 
+// The patches of an unordered system, held until every earlier patch has been handed on.
+class StreamOrder {
+ public:
+  void dispatched(std::uint32_t id) { order_.push_back(id); }
+  // `emit` gets the vertices in stream order, as soon as every earlier one has come.
+  template <class Emit>
+  void take(const VertexFx& v, Emit&& emit) {
+    if (!order_.empty() && v.id == order_.front() && held_.find(v.id) == held_.end()) {
+      emit(v);  // the oldest patch, nothing of it held: straight through
+      if (v.last) {
+        order_.pop_front();
+        release(emit);
+      }
+      return;
+    }
+    held_[v.id].push_back(v);
+  }
+
+ private:
+  template <class Emit>
+  void release(Emit&& emit) {
+    while (!order_.empty()) {
+      auto it = held_.find(order_.front());
+      if (it == held_.end()) return;
+      for (const VertexFx& w : it->second) emit(w);
+      if (!it->second.back().last) {
+        it->second.clear();  // the rest comes straight through
+        held_.erase(it);
+        return;
+      }
+      held_.erase(it);
+      order_.pop_front();
+    }
+  }
+
+  std::deque<std::uint32_t> order_;
+  std::unordered_map<std::uint32_t, std::vector<VertexFx>> held_;
+};
+
 // cfg.units > 1: the system of sim/system.hpp, cycle by cycle. `r` comes with what simulate_range
 // set up.
 SimResult simulate_system(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
@@ -197,11 +238,22 @@ SimResult simulate_system(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t
   // A system's vertex can wait behind another unit's patches: the watchdog allows M times a unit's.
   Watchdog watchdog(run_cfg, system.unit(0).cpg_cycles() * cfg.units);
   std::uint64_t accepted = 0, cycle = 0;
+  // Unordered reassembly: what the ports took is put back in stream order for everything after
+  // the run (order check, hooks, output file). The simulator's buffer, not the hardware's.
+  const bool unordered = cfg.reassembly == Reassembly::Unordered;
+  StreamOrder stream_order;
   auto run = [&](auto&& tick) {
     while (accepted < total) {
-      if (tick(source.available(), source.front())) source.pop();
+      const bool tri_valid = source.available();
+      if (tick(tri_valid, source.front())) {
+        if (unordered) stream_order.dispatched(source.front().id);
+        source.pop();
+      }
       for (const VertexFx& v : system.emitted()) {
-        accepted_vertices.take(v, cycle);
+        if (unordered)
+          stream_order.take(v, [&](const VertexFx& w) { accepted_vertices.take(w, cycle); });
+        else
+          accepted_vertices.take(v, cycle);
         ++accepted;
         watchdog.progress(cycle);
       }

@@ -116,10 +116,10 @@ std::string summary(const SimResult& r) {
     // Every line below sums the units (unit-cycles) and the ports (port-cycles).
     const SystemStats& st = r.system->stats;
     std::snprintf(buf, sizeof buf,
-                  "system   %zu units (%s, batches of %d), reassembly buffer %d slots (at most %d taken), %zu GE "
+                  "system   %zu units (%s, batches of %d), %s reassembly buffer %d slots (at most %d taken), %zu GE "
                   "ports; the lines below sum the units and the ports\n",
-                  r.system->units.size(), to_string(c.distribution).c_str(), c.dispatch_batch, c.reorder_slots,
-                  st.max_occupancy, r.system->ports.size());
+                  r.system->units.size(), to_string(c.distribution).c_str(), c.dispatch_batch,
+                  to_string(c.reassembly).c_str(), c.reorder_slots, st.max_occupancy, r.system->ports.size());
     s << buf;
     s << "units   ";
     for (std::size_t i = 0; i < r.system->units.size(); ++i)

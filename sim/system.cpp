@@ -158,11 +158,14 @@ bool UnitSystem::coordinate(bool tri_valid, const TriangleFx& tri, const UnitOut
 
   // ---- The buffer's admissions, from the registered state: the oldest patch's vertices while a
   // slot is free, any other unit's while two are (one stays for the oldest patch).
+  // Unordered, every slot is anyone's.
+  const bool ordered = cfg_.reassembly == Reassembly::Ordered;
   int admitted = 0;
   for (int u = 0; u < units(); ++u) {
     admit_[static_cast<std::size_t>(u)] = 0;
     if (!outputs[u].vtx_valid) continue;
-    const bool oldest = order_count_ > 0 && order_[order_head_].unit == u && order_[order_head_].id == outputs[u].vtx->id;
+    const bool oldest = !ordered || (order_count_ > 0 && order_[order_head_].unit == u &&
+                                     order_[order_head_].id == outputs[u].vtx->id);
     if (occupancy_at_start + admitted < (oldest ? r : r - 1)) {
       admit_[static_cast<std::size_t>(u)] = 1;
       ++admitted;
@@ -171,23 +174,42 @@ bool UnitSystem::coordinate(bool tri_valid, const TriangleFx& tri, const UnitOut
     }
   }
 
-  // ---- The ports, in index order, take the buffer's vertices in stream order.
+  // ---- The ports, in index order, take the buffer's vertices in stream order (unordered: the
+  // next unit in turn with a vertex; order_count_ then only counts the patches in flight).
   emitted_.clear();
   for (Gpe& port : ports_) {
-    const bool waiting_stream = order_count_ == 0;
-    const int head_unit = waiting_stream ? -1 : order_[order_head_].unit;
-    const bool available = !waiting_stream && queues_[static_cast<std::size_t>(head_unit)].count > 0;
-    const GpeCycle c = port.tick(available, false);
-    if (c.accepted) {
-      const VertexFx v = pop(head_unit);
-      emitted_.push_back(v);
-      ++stats_.vertices;
-      if (v.last) {
-        order_head_ = order_head_ + 1 == order_.size() ? 0 : order_head_ + 1;
-        --order_count_;
+    if (ordered) {
+      const bool waiting_stream = order_count_ == 0;
+      const int head_unit = waiting_stream ? -1 : order_[order_head_].unit;
+      const bool available = !waiting_stream && queues_[static_cast<std::size_t>(head_unit)].count > 0;
+      const GpeCycle c = port.tick(available, false);
+      if (c.accepted) {
+        const VertexFx v = pop(head_unit);
+        emitted_.push_back(v);
+        ++stats_.vertices;
+        if (v.last) {
+          order_head_ = order_head_ + 1 == order_.size() ? 0 : order_head_ + 1;
+          --order_count_;
+        }
+      } else if (c.spare) {
+        ++(waiting_stream ? stats_.ports_waiting_stream : stats_.ports_waiting_unit);
       }
-    } else if (c.spare) {
-      ++(waiting_stream ? stats_.ports_waiting_stream : stats_.ports_waiting_unit);
+    } else {
+      int from = -1;
+      for (int i = 0; i < units() && from < 0; ++i) {
+        const int u = next_port_unit_ + i < units() ? next_port_unit_ + i : next_port_unit_ + i - units();
+        if (queues_[static_cast<std::size_t>(u)].count > 0) from = u;
+      }
+      const GpeCycle c = port.tick(from >= 0, false);
+      if (c.accepted) {
+        const VertexFx v = pop(from);
+        emitted_.push_back(v);
+        ++stats_.vertices;
+        if (v.last) --order_count_;
+        next_port_unit_ = from + 1 == units() ? 0 : from + 1;
+      } else if (c.spare) {
+        ++(order_count_ == 0 ? stats_.ports_waiting_stream : stats_.ports_waiting_unit);
+      }
     }
   }
 
@@ -201,10 +223,12 @@ bool UnitSystem::coordinate(bool tri_valid, const TriangleFx& tri, const UnitOut
     ++pending_patches_[t];
     pending_vertices_[t] += static_cast<std::uint64_t>(patch_vertex_count(tri));
     ++stats_.unit_triangles[t];
-    if (order_count_ == order_.size()) throw std::logic_error("UnitSystem: more patches in flight than the order FIFO holds");
-    std::size_t tail = order_head_ + order_count_;
-    if (tail >= order_.size()) tail -= order_.size();
-    order_[tail] = {static_cast<std::uint8_t>(target), tri.id};
+    if (ordered) {
+      if (order_count_ == order_.size()) throw std::logic_error("UnitSystem: more patches in flight than the order FIFO holds");
+      std::size_t tail = order_head_ + order_count_;
+      if (tail >= order_.size()) tail -= order_.size();
+      order_[tail] = {static_cast<std::uint8_t>(target), tri.id};
+    }
     ++order_count_;
     if (batch_left_ == 0) {
       batch_unit_ = target;

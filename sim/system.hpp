@@ -2,6 +2,7 @@
 // triangle (or batch of `dispatch_batch` triangles) to one of M units by its policy; a reassembly
 // buffer of R vertex slots, shared by the units, takes their output and hands it to P geometry-
 // engine ports in stream order, so the system's output is the single unit's, vertex for vertex.
+// (`reassembly unordered`, a study's bound: the ports take any unit's vertices, the units in turn.)
 //
 // The buffer is a pool of R slots holding one linked queue per unit (a unit's vertices arrive in
 // its own order, which is stream order among its patches); an order FIFO records which unit got
@@ -104,6 +105,7 @@ class UnitSystem {
   // The distributor's view of each unit: patches and vertices dispatched and not yet out.
   std::vector<std::uint64_t> pending_patches_, pending_vertices_;
   int batch_unit_ = 0, batch_left_ = 0, next_rr_ = 0;
+  int next_port_unit_ = 0;  // unordered: the unit the next port looks at first
   std::uint64_t cpg_weight_ = 0, te_weight_ = 0;  // earliest_finish: (C + 1) N and ops Mc
   std::vector<VertexFx> emitted_;
   std::vector<std::uint8_t> admit_;

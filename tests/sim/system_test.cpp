@@ -162,3 +162,44 @@ TEST(UnitSystem, ASystemTakesDedicatedCpgsOnTheirTes) {
 
 }  // namespace
 }  // namespace tessim::sim
+
+namespace tessim::sim {
+namespace {
+
+// Unordered reassembly (a study's bound): the ports take any unit's vertices, the run hands them
+// on in stream order all the same, every slot is anyone's, and with a buffer too small for the
+// order it is faster than the ordered system; with room for the order it is as fast.
+TEST(UnitSystem, UnorderedReassemblyBoundsWhatTheOrderCosts) {
+  const Mesh mesh = wuson_part(300);
+  const TessSettings adaptive = far_view();
+  const MeshPatterns patterns(&adaptive);
+  UnitConfig single;
+  single.gpe_cycles = 1;
+  single.cpg = CpgVariant{3, 4};
+  const Outcome want = run(mesh, single, patterns);
+  for (const int units : {2, 4}) {
+    for (const int slots : {4, 16, 4096}) {
+      UnitConfig cfg = single;
+      cfg.units = units;
+      cfg.ge_ports = units;
+      cfg.reorder_slots = slots;
+      cfg.validate("test");
+      const Outcome ordered = run(mesh, cfg, patterns);
+      cfg.reassembly = Reassembly::Unordered;
+      const Outcome unordered = run(mesh, cfg, patterns);
+      ASSERT_EQ(unordered.vertices, want.vertices) << describe(cfg);
+      const SystemStats& s = unordered.result.system->stats;
+      EXPECT_LE(s.max_occupancy, slots);
+      EXPECT_EQ(s.vertices, want.vertices.size());
+      const double a = throughput(ordered.result), b = throughput(unordered.result);
+      if (slots == 4)
+        EXPECT_GT(b, 1.15 * a) << describe(cfg);
+      else if (slots == 4096)
+        EXPECT_NEAR(b, a, 0.02 * a) << describe(cfg);
+      EXPECT_GE(b, 0.98 * a) << describe(cfg);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessim::sim

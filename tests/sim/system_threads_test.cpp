@@ -2,7 +2,8 @@
 // cycle for cycle: the same triangle taken and the same vertices out of the ports in every cycle,
 // the same counters of every unit, port and buffer at the end — over the distribution policies,
 // batches, buffers down to 2 slots (the blocking regime, where units wait for the coordinator's
-// decisions), random port stalls, uniform and adaptive D3D11 factors, more threads than cores.
+// decisions), ordered and unordered reassembly, random port stalls, uniform and adaptive D3D11
+// factors, more threads than cores.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -135,6 +136,7 @@ TEST(ThreadedSystem, EveryCycleAsOneThreadAcrossPoliciesBuffersStallsAndFactors)
           cfg.ge_ports = units == 5 ? 3 : units;
           cfg.distribution = d;
           cfg.dispatch_batch = slots == 7 ? 2 : 1;
+          cfg.reassembly = slots == 7 && d != Distribution::RoundRobin ? Reassembly::Unordered : Reassembly::Ordered;
           cfg.reorder_slots = slots;
           cfg.gpe_stall_prob = slots == 256 ? 0.0 : 0.3;
           cfg.validate("test");
