@@ -2,13 +2,16 @@
 // units' vertices back in stream order for GePorts geometry-engine ports.
 //
 // A pool of ReorderSlots (R) vertex slots holds one linked queue per unit (head, tail, count, a
-// next pointer per slot; free slots in a bitmap), and an order FIFO holds, per patch dispatched
-// and not yet fully handed to the ports, its unit and id. Every decision comes from the state at
-// the start of the cycle:
+// next pointer per slot; free slot indices in a circular FIFO), and an order FIFO holds, per
+// patch dispatched and not yet fully handed to the ports, its unit and id. Every decision comes
+// from the state at the start of the cycle:
 //
 //  - admission: units in index order with a running count; unit u's vertex is admitted while
 //    occupancy + admitted before it < R when it belongs to the oldest patch (the order FIFO's
 //    head: same unit, same id), < R - 1 otherwise (one slot stays for the oldest patch);
+//  - slots: the admitted units, in index order, take the free FIFO's first entries (unit u the
+//    entry after those of the admitted units before it: a prefix count, no search over R); the
+//    slots the ports take are appended at its tail in lane order;
 //  - lanes: lane k is the k-th next vertex in stream order (the head unit's queue until a last
 //    vertex, then the next patch's unit's queue), valid while each lane before it is;
 //  - ports: port p is offered lane k_p, k_p the number of ports before it that are ready (each
@@ -80,7 +83,10 @@ module tess_reassembly #(
   // ------------------------------------------------------------------ registered state
   (* mem2reg *) logic [VtxW-1:0] slot_vtx_q [ReorderSlots];   // data: written before read
   (* mem2reg *) logic [SW-1:0]   slot_next_q [ReorderSlots];  // data: written before read
-  logic [ReorderSlots-1:0] free_q;
+  // Free slot indices, circular over ReorderSlots entries (with RuntimeConfig only `slots` of
+  // them are ever in use). Its count is R - occupancy, so occ_q serves as the count register.
+  (* mem2reg *) logic [SW-1:0] free_idx_q [ReorderSlots];
+  logic [SW-1:0]           free_head_q;
   logic [SCW-1:0]          occ_q;
   (* mem2reg *) logic [SW-1:0]  head_q [Units];   // meaningful while count > 0
   (* mem2reg *) logic [SW-1:0]  tail_q [Units];   // meaningful while count > 0
@@ -103,12 +109,14 @@ module tess_reassembly #(
 
   logic [Units-1:0] admit, oldest;
   logic [AW-1:0]    admitted;
+  (* mem2reg *) logic [AW-1:0] admitted_before [Units];  // unit u's entry of the free FIFO
   for (genvar u = 0; u < Units; u++) begin : g_oldest
     assign oldest[u] = ord_count_q != '0 && oldest_unit == UW'(u) && oldest_id == uvtx[u][IdLsb +: IdW];
   end
   always_comb begin
     admitted = '0;
     for (int u = 0; u < Units; u++) begin
+      admitted_before[u] = admitted;
       admit[u] = unit_valid_i[u] && (AW'(occ_q) + admitted < (oldest[u] ? AW'(slots) : AW'(slots) - AW'(1)));
       admitted = admitted + AW'(admit[u]);
     end
@@ -205,7 +213,6 @@ module tess_reassembly #(
   (* mem2reg *) logic [SCW-1:0] count_pop [Units];
   logic [OPW-1:0] ord_head_pop;
   logic [OCW-1:0] ord_count_pop;
-  logic [ReorderSlots-1:0] freed;
   always_comb begin
     for (int u = 0; u < Units; u++) begin
       head_pop[u]  = '0;
@@ -223,31 +230,45 @@ module tess_reassembly #(
         ord_count_pop = cur_left[k*OCW +: OCW];
       end
     end
-    freed = '0;
-    for (int s = 0; s < ReorderSlots; s++) begin
-      for (int k = 0; k < GePorts; k++) begin
-        if (KW'(k) < taken && lane_slot[k*SW +: SW] == SW'(s)) freed[s] = 1'b1;
-      end
-    end
   end
 
-  // Each admitted unit gets a free slot of the start of the cycle: the lowest one left by the
-  // units before it (admissions never exceed the free slots: occupancy + admitted <= R).
+  // The free FIFO, circular over entries 0..ReorderSlots-1 (head + an offset below R wraps at
+  // most once). Allocation: the first M entries are read independently of the admission, and
+  // unit u takes the one after those of the admitted units before it (admissions never exceed the
+  // free slots: occupancy + admitted <= R, so those entries hold free slots). Freeing: the k-th
+  // lane taken goes to tail + k, tail = head + R - occupancy: the allocations move the head and
+  // shorten the count alike, so the tail does not depend on them; free + taken <= R, so no write
+  // lands on an entry that holds a free slot of the start of the cycle.
+  localparam int unsigned FW = $clog2(2 * ReorderSlots + Units + GePorts);
+  // entries head .. head + M - 1, read every cycle: Units <= ReorderSlots (every build's)
+  (* mem2reg *) logic [SW-1:0] free_first [Units];
   (* mem2reg *) logic [SW-1:0] alloc [Units];
-  logic [ReorderSlots-1:0] allocated, avail;
+  (* mem2reg *) logic [SW-1:0] free_put [GePorts];  // where lane k's slot goes if taken
+  logic [FW-1:0]  fpos;
+  logic [SW-1:0]  free_head_d;
+  (* mem2reg *) logic [SW-1:0] free_idx_d [ReorderSlots];
   always_comb begin
-    avail     = free_q;
-    allocated = '0;
+    fpos = '0;
+    for (int j = 0; j < Units; j++) begin
+      fpos          = FW'(free_head_q) + FW'(j);
+      free_first[j] = free_idx_q[(fpos >= FW'(ReorderSlots)) ? SW'(fpos - FW'(ReorderSlots)) : SW'(fpos)];
+    end
     for (int u = 0; u < Units; u++) begin
       alloc[u] = '0;
-      for (int s = ReorderSlots - 1; s >= 0; s--) begin
-        if (avail[s]) alloc[u] = SW'(s);
+      for (int j = 0; j <= u; j++) begin
+        if (admitted_before[u] == AW'(j)) alloc[u] = free_first[j];
       end
-      for (int s = 0; s < ReorderSlots; s++) begin
-        if (admit[u] && alloc[u] == SW'(s)) begin
-          avail[s]     = 1'b0;
-          allocated[s] = 1'b1;
-        end
+    end
+    for (int k = 0; k < GePorts; k++) begin
+      fpos        = FW'(free_head_q) + FW'(slots) - FW'(occ_q) + FW'(k);
+      free_put[k] = (fpos >= FW'(ReorderSlots)) ? SW'(fpos - FW'(ReorderSlots)) : SW'(fpos);
+    end
+    fpos        = FW'(free_head_q) + FW'(admitted);
+    free_head_d = (fpos >= FW'(ReorderSlots)) ? SW'(fpos - FW'(ReorderSlots)) : SW'(fpos);
+    for (int i = 0; i < ReorderSlots; i++) begin
+      free_idx_d[i] = free_idx_q[i];
+      for (int k = 0; k < GePorts; k++) begin
+        if (KW'(k) < taken && free_put[k] == SW'(i)) free_idx_d[i] = lane_slot[k*SW +: SW];
       end
     end
   end
@@ -257,7 +278,6 @@ module tess_reassembly #(
   (* mem2reg *) logic [SCW-1:0] count_d [Units];
   (* mem2reg *) logic [VtxW-1:0] slot_vtx_d [ReorderSlots];
   (* mem2reg *) logic [SW-1:0]   slot_next_d [ReorderSlots];
-  logic [ReorderSlots-1:0] free_d;
   logic [SCW-1:0]          occ_d;
   always_comb begin
     for (int u = 0; u < Units; u++) begin
@@ -278,7 +298,6 @@ module tess_reassembly #(
         if (admit[u] && count_pop[u] != '0 && tail_q[u] == SW'(s)) slot_next_d[s] = alloc[u];
       end
     end
-    free_d = (free_q & ~allocated) | freed;
     occ_d  = SCW'(AW'(occ_q) + admitted - AW'(taken));
   end
 
@@ -293,12 +312,12 @@ module tess_reassembly #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      free_q      <= '1;
+      free_head_q <= '0;
       occ_q       <= '0;
       ord_head_q  <= '0;
       ord_count_q <= '0;
     end else begin
-      free_q      <= free_d;
+      free_head_q <= free_head_d;
       occ_q       <= occ_d;
       ord_head_q  <= ord_head_pop;
       ord_count_q <= ord_count_d;
@@ -312,6 +331,13 @@ module tess_reassembly #(
     always_ff @(posedge clk_i) begin
       head_q[u] <= head_d[u];
       tail_q[u] <= tail_d[u];
+    end
+  end
+  // Reset: every slot free, entry i holding slot i (with RuntimeConfig the first `slots`).
+  for (genvar i = 0; i < ReorderSlots; i++) begin : g_free
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) free_idx_q[i] <= SW'(i);
+      else free_idx_q[i] <= free_idx_d[i];
     end
   end
   for (genvar s = 0; s < ReorderSlots; s++) begin : g_slot
