@@ -111,27 +111,26 @@ class PatchSpool {
   std::string buffer_;
 };
 
-// --chunks: a count, or 0 for auto (resolved once the mesh's triangles are known).
-int parse_chunks(const std::string& text) {
+// A count option of 1..max ("a number of <what>"), or auto: 0.
+int parse_count_or_auto(const std::string& text, const char* option, int max, const char* what) {
   if (text == "auto") return 0;
   int k = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), k);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || k < 1 || k > sim::kMaxChunks)
-    throw InputError("command line", "--chunks",
-                     "'" + text + "' is not a number of chunks (1.." + std::to_string(sim::kMaxChunks) + ") or auto");
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || k < 1 || k > max)
+    throw InputError("command line", option,
+                     "'" + text + "' is not a number of " + what + " (1.." + std::to_string(max) + ") or auto");
   return k;
 }
 
+// --chunks: a count, or 0 for auto (resolved once the mesh's triangles are known).
+int parse_chunks(const std::string& text) { return parse_count_or_auto(text, "--chunks", sim::kMaxChunks, "chunks"); }
+
 // --threads: a count (at most one per unit is used), or auto: one per hardware thread unless
 // chunks run on them already.
-int system_threads(const std::string& text, const sim::UnitConfig& cfg, int chunks) {
-  if (text == "auto") return chunks != 1 ? 1 : static_cast<int>(std::min(std::max(1u, std::thread::hardware_concurrency()), 64u));
-  int t = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), t);
-  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || t < 1 || t > 64)
-    throw InputError("command line", "--threads", "'" + text + "' is not a number of threads (1..64) or auto");
-  (void)cfg;
-  return t;
+int system_threads(const std::string& text, int chunks) {
+  const int t = parse_count_or_auto(text, "--threads", 64, "threads");
+  if (t != 0) return t;
+  return chunks != 1 ? 1 : static_cast<int>(std::min(std::max(1u, std::thread::hardware_concurrency()), 64u));
 }
 
 void run_sim(const SimArgs& a, const ConfigFlags& flags) {
@@ -216,7 +215,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   sim::SimHooks hooks;
   hooks.measure_errors = a.errors;
   hooks.fast_forward = !a.no_fast_forward;
-  hooks.system_threads = system_threads(a.threads, cfg, chunks);
+  hooks.system_threads = system_threads(a.threads, chunks);
   std::unique_ptr<MeshWriter> writer;
   std::unique_ptr<WeldingWriter> welder;
   std::vector<WeldKey> keys;

@@ -415,7 +415,6 @@ bool ThreadedSystem::tick_parallel(bool tri_valid, const TriangleFx& tri) {
     lane.pushed.store(n + 1, std::memory_order_release);
   }
   ++cycle_;
-  ++parallel_cycles_;
   // Publishing costs the other cores' copies of the line: progress_ is stored when a unit may be
   // waiting for it (one not known to be past this cycle) and every kPublish cycles for the rings;
   // the horizon when a unit may be near it and every kPublish cycles. Publishing later is only

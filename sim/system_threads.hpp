@@ -53,11 +53,7 @@ class ThreadedSystem {
   // the helpers are joined; then the system's units read as after as many UnitSystem::tick() calls.
   void finish();
 
-  int threads() const { return static_cast<int>(owner_groups_.size()); }
-  const std::vector<int>& units_of_thread(int t) const { return owner_groups_[static_cast<std::size_t>(t)]; }
-  // Cycles run on several threads and on the calling one alone, and the switches between the two.
-  std::uint64_t parallel_cycles() const { return parallel_cycles_; }
-  std::uint64_t serial_cycles() const { return cycle_ - parallel_cycles_; }
+  // Switches between the parallel and the serial mode so far.
   int mode_switches() const { return switches_; }
 
  private:
@@ -125,7 +121,6 @@ class ThreadedSystem {
   int age_[2] = {0, 0};      // windows since each was measured
   int probe_every_[2] = {8, 8};  // windows after which each is measured again
   bool probing_ = false;     // the current mode is on trial
-  std::uint64_t parallel_cycles_ = 0;
   int switches_ = 0;
   bool finished_ = false;
   // Each on a line of its own: progress_ and horizon_ change every cycle, the rest rarely.
