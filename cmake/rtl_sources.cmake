@@ -1,25 +1,36 @@
-# tessim_rtl_sources(<out-var> <dir>): the unit's SystemVerilog sources, as absolute paths in the
-# order <dir>/tess.f lists them (the package first, then the modules): the one source list that
-# the Verilated builds, lint and synthesis read. Editing the list re-runs CMake.
-function(tessim_rtl_sources out dir)
-  if(NOT EXISTS ${dir}/tess.f)
-    message(FATAL_ERROR "${dir}/tess.f: the list of RTL sources is missing")
+# tessim_rtl_list(<out-var> <list-file>): the SystemVerilog sources a list file names
+# (rtl/tess.f, rtl/system.f, rtl/ge/ge.f), as absolute paths in its order: the one reader of
+# those lists in CMake (scripts read them with scripts/rtl_sources.py, the same rules). One source
+# a line, relative to the list's directory; lines are stripped, blank lines and lines starting with
+# // skipped. Editing the list re-runs CMake.
+function(tessim_rtl_list out listing)
+  if(NOT EXISTS ${listing})
+    message(FATAL_ERROR "${listing}: the list of RTL sources is missing")
   endif()
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${dir}/tess.f)
-  file(STRINGS ${dir}/tess.f lines)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${listing})
+  get_filename_component(dir ${listing} DIRECTORY)
+  file(STRINGS ${listing} lines)
   set(sources "")
   foreach(line IN LISTS lines)
     string(STRIP "${line}" line)
     if(line STREQUAL "" OR line MATCHES "^//")
       continue()
     endif()
-    if(NOT EXISTS ${dir}/${line})
-      message(FATAL_ERROR "${dir}/tess.f: '${line}' does not exist")
+    get_filename_component(src ${dir}/${line} ABSOLUTE)
+    if(NOT EXISTS ${src})
+      message(FATAL_ERROR "${listing}: '${line}' does not exist")
     endif()
-    list(APPEND sources ${dir}/${line})
+    list(APPEND sources ${src})
   endforeach()
   if(NOT sources)
-    message(FATAL_ERROR "${dir}/tess.f lists no sources")
+    message(FATAL_ERROR "${listing} lists no sources")
   endif()
+  set(${out} ${sources} PARENT_SCOPE)
+endfunction()
+
+# tessim_rtl_sources(<out-var> <dir>): the unit's sources, <dir>/tess.f (the package first, then
+# the modules), which the Verilated builds, lint and synthesis read.
+function(tessim_rtl_sources out dir)
+  tessim_rtl_list(sources ${dir}/tess.f)
   set(${out} ${sources} PARENT_SCOPE)
 endfunction()

@@ -8,19 +8,7 @@
 # from cfg_*_i (RuntimeConfig = 1) and have P = M ports (a test runs P < M by never readying the
 # ports above P); m2_fixed has them as parameters (RuntimeConfig = 0: the parameter path), P = 1,
 # R = 4, earliest_finish, batch 3, and random X values at power-up. All check assertions.
-if(NOT EXISTS ${TESSIM_RTL_DIR}/system.f)
-  message(FATAL_ERROR "${TESSIM_RTL_DIR}/system.f: the list of the system's sources is missing")
-endif()
-set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${TESSIM_RTL_DIR}/system.f)
-file(STRINGS ${TESSIM_RTL_DIR}/system.f system_lines)
-set(TESSIM_SYSTEM_RTL_SOURCES "")
-foreach(line IN LISTS system_lines)
-  string(STRIP "${line}" line)
-  if(line STREQUAL "" OR line MATCHES "^//")
-    continue()
-  endif()
-  list(APPEND TESSIM_SYSTEM_RTL_SOURCES ${TESSIM_RTL_DIR}/${line})
-endforeach()
+tessim_rtl_list(TESSIM_SYSTEM_RTL_SOURCES ${TESSIM_RTL_DIR}/system.f)
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${TESSIM_SYSTEM_RTL_SOURCES})
 
 # tessim_verilate_system(<prefix> <verilator args>...)

@@ -24,16 +24,15 @@ while (($#)); do
     *) echo "block_cost.sh: unexpected '$1' (expected -list FILE.f or -chparam NAME VALUE)" >&2; exit 2 ;;
   esac
 done
-sources=""
-for list in $lists; do sources+=" $(sed -e '/^ *\/\//d' -e '/^ *$/d' -e "s|^|$rtl/|" "$rtl/$list" | tr '\n' ' ')"; done
+listings=()
+for list in $lists; do listings+=("$rtl/$list"); done
+sources=$(/usr/bin/python3 "$root/scripts/rtl_sources.py" "${listings[@]}" | tr '\n' ' ')
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 yosys -q -l "$work/log" -p "read_verilog -sv $sources; ${chparam:+chparam$chparam $module;} \
   hierarchy -check -top $module; synth -flatten; tee -q -o $work/cells stat; \
   async2sync; dfflegalize -cell \$_DFF_P_ 01; tee -q -o $work/cmos stat -tech cmos; \
   tee -q -o $work/ltp ltp -noff" > /dev/null
-cells=$(sed -n 's/^ *Number of cells: *\([0-9]*\)/\1/p' "$work/cells" | tail -1)
-flops=$({ grep -E '^\s+\$_(S?DFF|DFFE|SDFFE|SDFFCE|ALDFF|DFFSR|DLATCH)' "$work/cells" || true; } | awk '{s += $2} END {print s + 0}')
-transistors=$(sed -n 's/.*Estimated number of transistors: *\([0-9+]*\).*/\1/p' "$work/cmos" | tail -1)
-depth=$(sed -n 's/.*Longest topological path in .* (length=\([0-9]*\)).*/\1/p' "$work/ltp" | tail -1)
+stat=$(/usr/bin/python3 "$root/scripts/yosys_stat.py" generic "$work/cells" "$work/cmos" "$work/ltp")
+read -r cells flops transistors depth <<< "$stat"
 echo "$module${chparam:+ ($chparam )}: cells $cells, flip-flops $flops, transistors $transistors, depth $depth"

@@ -21,7 +21,7 @@ while (($#)); do
     *) echo "usage: ge_lane_cost.sh [-xilinx] [-json FILE]" >&2; exit 2 ;;
   esac
 done
-sources=$(sed -e '/^ *\/\//d' -e '/^ *$/d' -e "s|^|$ge/|" "$ge/ge.f" | tr '\n' ' ')
+sources=$(/usr/bin/python3 "$root/scripts/rtl_sources.py" "$ge/ge.f" | tr '\n' ' ')
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -36,7 +36,7 @@ w32_int_bits=$((31 - frac_bits))
 # luts, carry, xflops, dsps with -xilinx) and prints the line.
 cost() {
   local name=$1 top=$2 chparam=${3:-}
-  local log="$work/$name" start end
+  local log="$work/$name" start end stat
   mkdir -p "$log"
   start=$(date +%s.%N)
   yosys -q -l "$log/log" -p "read_verilog -sv $sources; ${chparam:+chparam $chparam $top;} \
@@ -44,10 +44,8 @@ cost() {
     async2sync; dfflegalize -cell \$_DFF_P_ 01; tee -q -o $log/cmos stat -tech cmos; \
     tee -q -o $log/ltp ltp -noff" > /dev/null
   end=$(date +%s.%N)
-  cells=$(sed -n 's/^ *Number of cells: *\([0-9]*\)/\1/p' "$log/cells" | tail -1)
-  flops=$({ grep -E '^\s+\$_(S?DFF|DFFE|SDFFE|SDFFCE|ALDFF|DFFSR|DLATCH)' "$log/cells" || true; } | awk '{s += $2} END {print s + 0}')
-  transistors=$(sed -n 's/.*Estimated number of transistors: *\([0-9+]*\).*/\1/p' "$log/cmos" | tail -1)
-  depth=$(sed -n 's/.*Longest topological path in .* (length=\([0-9]*\)).*/\1/p' "$log/ltp" | tail -1)
+  stat=$(/usr/bin/python3 "$root/scripts/yosys_stat.py" generic "$log/cells" "$log/cmos" "$log/ltp")
+  read -r cells flops transistors depth <<< "$stat"
   seconds=$(awk -v a="$start" -v b="$end" 'BEGIN {printf "%.1f", b - a}')
   local line="$name: cells $cells, flip-flops $flops, transistors $transistors, depth $depth (synthesis ${seconds} s)"
   if ((xilinx)); then
@@ -55,10 +53,8 @@ cost() {
     yosys -q -p "read_verilog -sv $sources; ${chparam:+chparam $chparam $top;} \
       hierarchy -check -top $top; synth_xilinx -flatten -top $top; tee -q -o $log/xilinx stat" > /dev/null
     end=$(date +%s.%N)
-    luts=$(awk '$1 ~ /^LUT[1-6]$/ {s += $2} END {print s + 0}' "$log/xilinx")
-    carry=$(awk '$1 == "CARRY4" {s += $2} END {print s + 0}' "$log/xilinx")
-    xflops=$(awk '$1 ~ /^FD[A-Z]*$/ {s += $2} END {print s + 0}' "$log/xilinx")
-    dsps=$(awk '$1 ~ /^DSP48/ {s += $2} END {print s + 0}' "$log/xilinx")
+    stat=$(/usr/bin/python3 "$root/scripts/yosys_stat.py" xilinx "$log/xilinx")
+    read -r luts xflops dsps carry _ <<< "$stat"
     xseconds=$(awk -v a="$start" -v b="$end" 'BEGIN {printf "%.1f", b - a}')
     line+="; xilinx: LUTs $luts, CARRY4 $carry, flip-flops $xflops, DSP48E1 $dsps (${xseconds} s)"
   fi

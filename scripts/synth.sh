@@ -71,7 +71,7 @@ order=("${kept[@]}")
 command -v yosys > /dev/null || { echo "synth.sh: yosys not found" >&2; exit 2; }
 
 # The sources of rtl/tess.f, in its order.
-sources=$(sed -e '/^ *\/\//d' -e '/^ *$/d' -e "s|^|$root/rtl/|" "$root/rtl/tess.f" | tr '\n' ' ')
+sources=$(/usr/bin/python3 "$root/scripts/rtl_sources.py" "$root/rtl/tess.f" | tr '\n' ' ')
 
 if [[ -n $keep ]]; then
   mkdir -p "$keep"
@@ -152,56 +152,26 @@ elapsed=$((SECONDS - start))
 param_text=""
 for name in "${order[@]}"; do param_text+="$name=${params[$name]} "; done
 
-python3 - "$work" "$json" "$elapsed" "$xilinx" "${param_text% }" "I=$I F=$F B=$B N=$N latency=$LAT V=$V" \
-  "${modules[@]}" <<'PY'
-import json, os, re, sys
+/usr/bin/python3 - "$root/scripts" "$work" "$json" "$elapsed" "$xilinx" "${param_text% }" \
+  "I=$I F=$F B=$B N=$N latency=$LAT V=$V" "${modules[@]}" <<'PY'
+import json, os, sys
 
-work, json_path, elapsed, xilinx, overrides, config = sys.argv[1:7]
-modules = sys.argv[7:]
+sys.path.insert(0, sys.argv[1])
+import yosys_stat
+
+work, json_path, elapsed, xilinx, overrides, config = sys.argv[2:8]
+modules = sys.argv[8:]
 xilinx = xilinx == "1"
 
 def read(path):
     with open(path) as f:
         return f.read()
 
-def cell_table(text):
-    """Cell type -> count from a `stat` report (flattened: one module)."""
-    cells = {}
-    total = None
-    for line in text.splitlines():
-        m = re.match(r"\s+Number of cells:\s+(\d+)", line)
-        if m:
-            total = int(m.group(1))
-            continue
-        m = re.match(r"\s+(\S+)\s+(\d+)$", line)
-        if m and total is not None:
-            cells[m.group(1)] = int(m.group(2))
-    return total, cells
-
 result = {"yosys": "0.23", "overrides": overrides, "config": config, "seconds": int(elapsed), "blocks": {}}
 for m in modules:
-    total, cells = cell_table(read(os.path.join(work, m + ".cells")))
-    flops = sum(v for k, v in cells.items() if re.match(r"\$_(S?DFF|DFFE|SDFFE|SDFFCE|ALDFF|DFFSR|DLATCH)", k))
-    cmos = read(os.path.join(work, m + ".cmos"))
-    t = re.search(r"Estimated number of transistors:\s+(\d+)(\+?)", cmos)
-    ltp = re.search(r"Longest topological path in \S+ \(length=(\d+)\)", read(os.path.join(work, m + ".ltp")))
-    entry = {
-        "cells": total,
-        "flops": flops,
-        "transistors": int(t.group(1)) if t else None,
-        "transistors_exact": bool(t) and t.group(2) == "",
-        "depth": int(ltp.group(1)) if ltp else None,
-    }
+    entry = yosys_stat.generic(*(read(os.path.join(work, m + ext)) for ext in (".cells", ".cmos", ".ltp")))
     if xilinx:
-        _, xc = cell_table(read(os.path.join(work, m + ".xil")))
-        entry["xilinx"] = {
-            "lut": sum(v for k, v in xc.items() if re.match(r"LUT\d$", k)),
-            "ff": sum(v for k, v in xc.items() if re.match(r"FD[A-Z]*$", k)),
-            "dsp": sum(v for k, v in xc.items() if k.startswith("DSP48")),
-            "carry4": xc.get("CARRY4", 0),
-            "muxf": sum(v for k, v in xc.items() if k.startswith("MUXF")),
-            "srl": sum(v for k, v in xc.items() if k.startswith("SRL")),
-        }
+        entry["xilinx"] = yosys_stat.xilinx(yosys_stat.cell_table(read(os.path.join(work, m + ".xil")))[1])
     result["blocks"][m] = entry
 
 if json_path != "-":

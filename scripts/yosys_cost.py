@@ -37,6 +37,9 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+import rtl_sources as rtl_sources_list
+import yosys_stat
+
 REPO = Path(__file__).resolve().parent.parent
 RECORD_SCHEMA = 2
 # Leaf modules synthesized inside their parents rather than as records of their own.
@@ -82,7 +85,6 @@ flatten
 synth_xilinx -top {top}
 {delete}tee -q -o {out}.xil stat
 """
-FLOP_CELL = re.compile(r"\$_(S?DFF|DFFE|SDFFE|SDFFCE|ALDFF|DFFSR|DLATCH)")
 
 
 class CostError(Exception):
@@ -91,9 +93,7 @@ class CostError(Exception):
 
 def rtl_sources(rtl_dir):
     """The sources of rtl/tess.f (package first), as paths."""
-    listing = Path(rtl_dir) / "tess.f"
-    lines = [line.strip() for line in listing.read_text().splitlines()]
-    return [Path(rtl_dir) / line for line in lines if line and not line.startswith("//")]
+    return rtl_sources_list.read(Path(rtl_dir) / "tess.f")
 
 
 def yosys_version():
@@ -318,19 +318,6 @@ def record_key(text, yosys, xilinx):
     return h.hexdigest()
 
 
-def cell_table(text):
-    cells, total = {}, None
-    for line in text.splitlines():
-        m = re.match(r"\s+Number of cells:\s+(\d+)", line)
-        if m:
-            total = int(m.group(1))
-            continue
-        m = re.match(r"\s+(\S+)\s+(\d+)$", line)
-        if m and total is not None:
-            cells[m.group(1)] = int(m.group(2))
-    return total, cells
-
-
 def synthesize_record(name, text, boxes, xilinx, work):
     """Costs one record with Yosys; returns its figures."""
     job = Path(work) / "job.il"
@@ -341,33 +328,24 @@ def synthesize_record(name, text, boxes, xilinx, work):
     generic = Path(work) / "generic.ys"
     generic.write_text(GENERIC_SCRIPT.format(job=job, top=name, delete=delete, out=out))
     run_yosys(generic, Path(work) / "generic.log", work)
-    total, cells = cell_table(Path(f"{out}.cells").read_text())
+    total, cells = yosys_stat.cell_table(Path(f"{out}.cells").read_text())
     total -= sum(cells.pop(b, 0) for b in boxes)  # the submodules' instances are their own records
     paths = port_timing(json.loads(Path(f"{out}.json").read_text()), name, boxes)
-    cmos = Path(f"{out}.cmos").read_text()
-    t = re.search(r"Estimated number of transistors:\s+(\d+)(\+?)", cmos)
-    ltp = re.search(r"Longest topological path in .* \(length=(\d+)\)", Path(f"{out}.ltp").read_text())
+    transistors, exact = yosys_stat.transistors(Path(f"{out}.cmos").read_text())
+    depth = yosys_stat.depth(Path(f"{out}.ltp").read_text())
     entry = {
         "cells": total or 0,
-        "flops": sum(v for k, v in cells.items() if FLOP_CELL.match(k)),
-        "transistors": int(t.group(1)) if t else 0,
-        "transistors_exact": bool(t) and t.group(2) == "",
-        "depth": int(ltp.group(1)) if ltp else 0,
+        "flops": yosys_stat.flops(cells),
+        "transistors": transistors or 0,
+        "transistors_exact": exact,
+        "depth": depth or 0,
         "paths": sorted([src, sink, gates] for (src, sink), gates in paths.items()),
     }
     if xilinx:
         script = Path(work) / "xilinx.ys"
         script.write_text(XILINX_SCRIPT.format(job=job, top=name, delete=delete, out=out))
         run_yosys(script, Path(work) / "xilinx.log", work)
-        _, xc = cell_table(Path(f"{out}.xil").read_text())
-        entry["xilinx"] = {
-            "lut": sum(v for k, v in xc.items() if re.match(r"LUT\d$", k)),
-            "ff": sum(v for k, v in xc.items() if re.match(r"FD[A-Z]*$", k)),
-            "dsp": sum(v for k, v in xc.items() if k.startswith("DSP48")),
-            "carry4": xc.get("CARRY4", 0),
-            "muxf": sum(v for k, v in xc.items() if k.startswith("MUXF")),
-            "srl": sum(v for k, v in xc.items() if k.startswith("SRL")),
-        }
+        entry["xilinx"] = yosys_stat.xilinx(yosys_stat.cell_table(Path(f"{out}.xil").read_text())[1])
     entry["seconds"] = round(time.monotonic() - start, 1)
     return entry
 

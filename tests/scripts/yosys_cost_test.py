@@ -8,6 +8,8 @@
 3. The longest path through the hierarchy joins a parent's paths to its children's at their ports,
    keeps output ports per bit, and finds the path the records imply.
 4. Whole-unit figures are the records' figures times their instance counts.
+5. scripts/yosys_stat.py, the one reader of Yosys's `stat`, `stat -tech cmos` and `ltp` reports,
+   reads their figures (and the command-line form the shell scripts read) from Yosys 0.23's text.
 """
 
 import json
@@ -21,6 +23,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "scripts"))
 import yosys_cost  # noqa: E402
+import yosys_stat  # noqa: E402
 
 failures = []
 
@@ -149,11 +152,88 @@ def test_compose_sums():
     check("Xilinx cells add over instances", total["xilinx"] == {"lut": 9, "ff": 2}, str(total["xilinx"]))
 
 
+# Yosys 0.23's reports, as `tee -q -o FILE stat` (generic, then synth_xilinx), `stat -tech cmos`
+# and `ltp -noff` write them for a flattened module.
+STAT_GENERIC = """
+20. Printing statistics.
+
+=== tess_fifo ===
+
+   Number of wires:               1203
+   Number of wire bits:           2398
+   Number of public wires:          12
+   Number of public wire bits:     160
+   Number of memories:               0
+   Number of memory bits:            0
+   Number of processes:              0
+   Number of cells:               1290
+     $_ANDNOT_                     300
+     $_DFFE_PP_                    100
+     $_DFF_PN0_                      5
+     $_MUX_                        800
+     $_SDFFCE_PN0P_                  3
+     $_XOR_                         82
+
+"""
+STAT_CMOS = """
+   Number of cells:               1290
+     $_DFF_P_                      108
+   Estimated number of transistors:      20476+
+"""
+STAT_LTP = """
+24. Executing LTP pass (find longest path).
+
+Longest topological path in tess_fifo (length=17):
+    0: \\rd_ptr_q [0]
+"""
+STAT_XILINX = """
+=== tess_fifo ===
+
+   Number of cells:                 79
+     CARRY4                          2
+     DSP48E1                         1
+     FDCE                           10
+     FDRE                            4
+     LUT2                            7
+     LUT6                           20
+     MUXF7                           3
+     SRL16E                          5
+     IBUF                           27
+"""
+
+
+def test_stat_reports(tmp):
+    total, cells = yosys_stat.cell_table(STAT_GENERIC)
+    check("stat: the number of cells and the table by type", total == 1290 and cells["$_MUX_"] == 800
+          and "Number" not in " ".join(cells), str(cells))
+    check("stat: flip-flops are the $_DFF/$_SDFF... cells", yosys_stat.flops(cells) == 108,
+          str(yosys_stat.flops(cells)))
+    check("stat -tech cmos: a count with cells of unknown cost is inexact",
+          yosys_stat.transistors(STAT_CMOS) == (20476, False))
+    check("stat -tech cmos: an exact count", yosys_stat.transistors(STAT_CMOS.replace("+", "")) == (20476, True))
+    check("ltp: the longest path", yosys_stat.depth(STAT_LTP) == 17)
+    check("missing lines read as None", yosys_stat.generic("", "", "") ==
+          {"cells": None, "flops": 0, "transistors": None, "transistors_exact": False, "depth": None})
+    x = yosys_stat.xilinx(yosys_stat.cell_table(STAT_XILINX)[1])
+    check("synth_xilinx cells by kind", x == {"lut": 27, "ff": 14, "dsp": 1, "carry4": 2, "muxf": 3, "srl": 5}, str(x))
+    files = []
+    for name, text in (("cells", STAT_GENERIC), ("cmos", STAT_CMOS), ("ltp", STAT_LTP), ("xil", STAT_XILINX)):
+        files.append(Path(tmp) / f"report.{name}")
+        files[-1].write_text(text)
+    script = str(ROOT / "scripts" / "yosys_stat.py")
+    line = subprocess.run([sys.executable, script, "generic", *map(str, files[:3])], capture_output=True,
+                          text=True).stdout
+    check("command line: cells flip-flops transistors depth", line == "1290 108 20476+ 17\n", repr(line))
+    line = subprocess.run([sys.executable, script, "xilinx", str(files[3])], capture_output=True, text=True).stdout
+    check("command line: LUTs flip-flops DSPs CARRY4s MUXFs SRLs", line == "27 14 1 2 3 5\n", repr(line))
+
+
 def main():
     if not shutil.which("yosys"):
         print("yosys_cost_test: yosys not found", file=sys.stderr)
         return 1
     with tempfile.TemporaryDirectory(prefix="yosys-cost-test-") as tmp:
+        test_stat_reports(tmp)
         test_keys(tmp)
         test_records_shared_between_configurations(tmp)
         test_paths_match_ltp(tmp)
