@@ -2,7 +2,7 @@
 """Checks that the build, the tests and the scripts use nothing beyond scripts/setup.sh.
 
 A fresh Debian machine has the packages of a base system plus what scripts/setup.sh installs
-(its PACKAGES list and their dependencies). A file that the configure, the build or a test
+(its package lists and their dependencies). A file that the configure, the build or a test
 touches but that belongs to any other package is a missing install step: it works on a machine
 that happens to have the package and fails on a new one. This script finds such files.
 
@@ -19,7 +19,7 @@ The report names every package outside the allowed set that owns a touched file 
 files), and every executed program outside the repository and temporary directories that no
 Debian package owns (a tool on PATH that a new machine would not have, e.g. another python3).
 
-Allowed: the packages named in scripts/setup.sh's PACKAGES list (or in --packages FILE, one
+Allowed: the packages named in scripts/setup.sh's package lists (or in --packages FILE, one
 per line, for the self-test), the installed packages they depend on (Depends and Pre-Depends,
 recursively; for an alternative `a | b`, the first one that is installed), and the packages a
 base system always has (Essential, priority required or important). Ownership comes from dpkg's
@@ -62,14 +62,16 @@ OPTIONAL = re.compile("|".join(f"(?:{p})" for p, _ in OPTIONAL_FILES))
 
 
 def setup_packages():
-    """The PACKAGES=( ... ) list of scripts/setup.sh, comments removed."""
+    """The packages of scripts/setup.sh (its DEFAULT_PACKAGES=( ... ) and FULL_PACKAGES=( ... )
+    lists: the default job's and the rest), comments removed."""
     text = (REPO / "scripts" / "setup.sh").read_text()
-    m = re.search(r"^PACKAGES=\((.*?)^\)", text, re.S | re.M)
-    if not m:
-        sys.exit("check_packages: scripts/setup.sh has no PACKAGES=( ... ) list")
+    lists = re.findall(r"^(?:DEFAULT|FULL)_PACKAGES=\((.*?)^\)", text, re.S | re.M)
+    if len(lists) != 2:
+        sys.exit("check_packages: scripts/setup.sh has no DEFAULT_PACKAGES=( ... ) and FULL_PACKAGES=( ... ) lists")
     names = []
-    for line in m.group(1).splitlines():
-        names += line.split("#", 1)[0].split()
+    for body in lists:
+        for line in body.splitlines():
+            names += line.split("#", 1)[0].split()
     return names
 
 

@@ -46,6 +46,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import sweep  # noqa: E402  (shared CSV/JSON writer and reader)
 import yosys_cost  # noqa: E402  (per-module records, composed)
+import cost_records  # noqa: E402  (composed results kept per configuration and RTL)
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -183,10 +184,20 @@ def main(argv):
     cache = Path(args.cache)
     results = {}
     missing = []
-    yosys_cost.elaborate_all([dict(c) for c in configs], jobs=args.jobs)
+    # Stored composed results of the current RTL first (scripts/cost_records.py); Yosys elaborates
+    # only the configurations without one.
+    yosys, digest = yosys_cost.yosys_version(), cost_records.sources_digest()
+    stored = {}
+    for c in configs:
+        path = cost_records.composed_dir(cache) / f"{cost_records.composed_key(dict(c), xilinx, yosys=yosys, digest=digest)}.json"
+        result = cost_records.load_composed(path, cache)
+        if result is not None:
+            stored[c] = result
+    yosys_cost.elaborate_all([dict(c) for c in configs if c not in stored], jobs=args.jobs)
     for c in configs:
         try:
-            results[c] = yosys_cost.cost(dict(c), cache, xilinx=xilinx, require_cached=True)
+            results[c] = stored.get(c) or cost_records.cost(dict(c), cache, xilinx=xilinx, require_cached=True,
+                                                            yosys=yosys, digest=digest)
         except yosys_cost.CostError:
             missing.append(c)
     print(f"costs.py: {len(configs)} RTL configurations, {len(configs) - len(missing)} with every module record "
@@ -198,7 +209,7 @@ def main(argv):
     if args.require_cached and missing:
         for c in missing:
             try:
-                yosys_cost.cost(dict(c), cache, xilinx=xilinx, require_cached=True)
+                cost_records.cost(dict(c), cache, xilinx=xilinx, require_cached=True)
             except yosys_cost.CostError as e:
                 print(f"costs.py: error: {describe(c)}: {e} (of the current RTL and {yosys_cost.yosys_version()}) "
                       f"in {cache}; run scripts/costs.py without --require-cached to synthesize it", file=sys.stderr)
@@ -212,7 +223,7 @@ def main(argv):
             n = yosys_cost.synthesize_missing([dict(c) for c in missing], cache, xilinx=xilinx, jobs=args.jobs,
                                               log=sys.stderr)
             for c in missing:
-                results[c] = yosys_cost.cost(dict(c), cache, xilinx=xilinx, require_cached=True)
+                results[c] = cost_records.cost(dict(c), cache, xilinx=xilinx, require_cached=True)
         except (yosys_cost.CostError, OSError) as e:
             print(f"costs.py: error: {e}", file=sys.stderr)
             return 1

@@ -23,8 +23,8 @@ expect() {  # expect STATUS PATTERN ARGS...: the check exits STATUS and prints P
 
 header=/usr/include/assimp/scene.h      # libassimp-dev
 program=$(readlink -f /usr/bin/verilator) # verilator
-sed -n '/^PACKAGES=(/,/^)/p' "$root/scripts/setup.sh" | sed '1d;$d' | sed 's/#.*//' | tr -s ' ' '\n' \
-  | grep -v '^$' >"$work/all.txt"
+/usr/bin/python3 -c 'import sys; sys.path.insert(0, sys.argv[1]); import check_packages; print("\n".join(check_packages.setup_packages()))' \
+  "$root/scripts" >"$work/all.txt"
 grep -vx 'libassimp-dev' "$work/all.txt" >"$work/no-assimp.txt"
 
 # Files, with the full list: OK; without libassimp-dev: its header is reported.
