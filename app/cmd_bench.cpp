@@ -12,8 +12,8 @@
 #include "app/commands.hpp"
 #include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/config.hpp"
-#include "sim/simulate.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/simulate.hpp"
 
 namespace tessim::app {
 

@@ -18,9 +18,9 @@
 #include "app/commands.hpp"
 #include "model/base/error.hpp"
 #include "model/base/input_file.hpp"
-#include "sim/json_input.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
+#include "sim/base/json_input.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
 
 namespace tessim::app {
 

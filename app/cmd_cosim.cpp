@@ -23,9 +23,9 @@
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/config.hpp"
-#include "sim/host.hpp"
-#include "sim/json_input.hpp"
+#include "sim/base/json_input.hpp"
+#include "sim/config/config.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::app {
 
@@ -272,7 +272,8 @@ void register_cosim(CLI::App& app) {
                   "arithmetic saturates)")
       ->transform(number_check<double>("command line", "--random-extent", "0.001..1000"))
       ->capture_default_str();
-  // --config and every parameter of sim/params.hpp (--int-blocks/--int selects the RTL build nN;
+  // --config and every parameter of sim/config/params.hpp (--int-blocks/--int selects the RTL build
+  // nN;
   // --seed also seeds the RTL's X randomisation).
   auto flags = std::make_shared<ConfigFlags>(*cmd);
   cmd->add_option("--seeds", args->seeds, "Run this many consecutive seeds (1..1000000)")

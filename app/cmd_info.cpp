@@ -14,7 +14,7 @@
 #include "model/mesh_io.hpp"
 #include "model/silhouette.hpp"
 #include "model/st_mesh.hpp"
-#include "sim/host.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::app {
 

@@ -29,10 +29,10 @@
 #include "model/tessellate.hpp"
 #include "render/annotate.hpp"
 #include "render/raster.hpp"
-#include "sim/config.hpp"
-#include "sim/datapath.hpp"
-#include "sim/host.hpp"
-#include "sim/reference_check.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/reference_check.hpp"
+#include "sim/values/datapath.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::app {
 

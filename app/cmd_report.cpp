@@ -19,7 +19,7 @@
 #include "model/base/error.hpp"
 #include "model/base/input_file.hpp"
 #include "model/base/output_file.hpp"
-#include "sim/json_input.hpp"
+#include "sim/base/json_input.hpp"
 
 namespace tessim::app {
 

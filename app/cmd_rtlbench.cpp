@@ -14,9 +14,9 @@
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/host.hpp"
-#include "sim/testbench.hpp"
-#include "sim/unit.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/unit/unit.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::app {
 

@@ -1,4 +1,4 @@
-// tessim schema: the machine-readable description of the unit (sim/params.hpp) as JSON:
+// tessim schema: the machine-readable description of the unit (sim/config/params.hpp) as JSON:
 // every configuration parameter (key, flag, aliases, RTL name, kind, type, range, default,
 // unit, description), the INT operation table, the statistics counters, the CPG cycles per
 // normal mode and coordinate format, tess_unit's ports (widths as functions of the parameters,
@@ -10,8 +10,8 @@
 
 #include "app/commands.hpp"
 #include "model/base/error.hpp"
-#include "sim/params.hpp"
-#include "sim/schema.hpp"
+#include "sim/config/params.hpp"
+#include "sim/report/schema.hpp"
 
 namespace tessim::app {
 

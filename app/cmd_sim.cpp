@@ -24,12 +24,12 @@
 #include "model/pattern.hpp"
 #include "model/tessellate.hpp"
 #include "model/weld.hpp"
-#include "sim/chunked.hpp"
-#include "sim/config.hpp"
-#include "sim/report.hpp"
-#include "sim/schedule.hpp"
-#include "sim/simulate.hpp"
-#include "sim/trace.hpp"
+#include "sim/config/config.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/chunked.hpp"
+#include "sim/run/schedule.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/run/trace.hpp"
 
 namespace tessim::app {
 
@@ -334,7 +334,7 @@ void register_sim(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "sim", "Run a mesh through the cycle-level model of the unit and its geometry engine");
   sub->add_option("mesh", args->mesh, "input mesh (OBJ, PLY, STL, OFF, ...)")->capture_default_str();
-  auto flags = std::make_shared<ConfigFlags>(*sub);  // --config and every parameter (sim/params.hpp)
+  auto flags = std::make_shared<ConfigFlags>(*sub);  // --config and every parameter (sim/config/params.hpp)
   sub->add_option("--stats", args->stats, "write the statistics as JSON");
   sub->add_option("--trace", args->trace,
                   "write a Chrome/Perfetto trace (JSON; gzip-compressed when the name ends in .gz, e.g. .json.gz)");

@@ -23,12 +23,12 @@
 #include "model/mesh.hpp"
 #include "model/normal_mode.hpp"
 #include "model/silhouette.hpp"
-#include "sim/config.hpp"
+#include "sim/config/config.hpp"
 
 namespace tessim::app {
 
 // Checks of options shared by the reference commands (tessellate, render): InputError naming
-// the command and the option. The cycle-model commands check theirs through sim/params.hpp.
+// the command and the option. The cycle-model commands check theirs through sim/config/params.hpp.
 void check_tess_factor(const char* command, int factor);
 NormalMode parse_normals_option(const char* command, const std::string& text);
 

@@ -1,6 +1,7 @@
 // The unit's configuration on the command line of `tessim sim` and `tessim cosim`: --config
-// FILE and one flag per parameter of sim/params.hpp (canonical name and aliases from the table,
-// help text with the default and the range). A flag overrides the file only when it is given.
+// FILE and one flag per parameter of sim/config/params.hpp (canonical name and aliases from the
+// table, help text with the default and the range). A flag overrides the file only when it is
+// given.
 #pragma once
 
 #include <deque>
@@ -9,8 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json_fwd.hpp>
 
-#include "sim/config.hpp"
-#include "sim/params.hpp"
+#include "sim/config/config.hpp"
+#include "sim/config/params.hpp"
 
 namespace tessim::app {
 

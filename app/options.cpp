@@ -18,7 +18,7 @@
 #include "model/d3d11_pattern.hpp"
 #include "model/pattern.hpp"
 #include "render/raster.hpp"
-#include "sim/host.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::app {
 

@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "model/base/error.hpp"
-#include "sim/blocks/counter_registry.hpp"
-#include "sim/params.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
+#include "sim/base/counter_registry.hpp"
+#include "sim/config/params.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
 #include "sim/version.hpp"
 
 namespace tessim::app {
@@ -156,7 +156,7 @@ std::string value_text(const json& v) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The classes of the blocks from the counter registry (sim/blocks/counter_registry.hpp): in the
+// The classes of the blocks from the counter registry (sim/base/counter_registry.hpp): in the
 // order they stack (useful work at the bottom), with their colours and meanings.
 
 struct ClassStyle {
@@ -228,7 +228,7 @@ std::string summary_section(const Stats& s) {
   };
   h += "<tr><th>mesh</th><td colspan=\"2\"><code>" + html_escape(s.text("mesh")) + "</code></td></tr>\n";
   row("triangles", grouped(s.count("triangles")), "triangles");
-  // The unit's other run counters, as the registry has them (sim/blocks/counter_registry.hpp).
+  // The unit's other run counters, as the registry has them (sim/base/counter_registry.hpp).
   for (const sim::CounterRow& r : sim::kCounterRegistry) {
     const std::string key = r.key;
     if (r.block != sim::CounterBlock::Run || key == "cycles" || key == "vertices_out" || !s.find(key)) continue;

@@ -7,11 +7,11 @@
 
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/config.hpp"
-#include "sim/host.hpp"
-#include "sim/simulate.hpp"
-#include "sim/testbench.hpp"
-#include "sim/unit.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/unit/unit.hpp"
+#include "sim/values/host.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #include "cosim/checkers.hpp"
 
-#include "sim/reference_check.hpp"
+#include "sim/run/reference_check.hpp"
 
 namespace tessim::cosim {
 
@@ -37,7 +37,7 @@ std::optional<Mismatch> CounterChecker::check(const sim::UnitCounters& e, const 
   auto diff = [](const std::string& name, std::uint64_t x, std::uint64_t y) {
     return Mismatch{"counters." + name, std::to_string(x), std::to_string(y)};
   };
-  // Every counter the unit keeps, in registry order (sim/blocks/counter_registry.hpp): the run's
+  // Every counter the unit keeps, in registry order (sim/base/counter_registry.hpp): the run's
   // counts, INT busy per block, the TE's and the CPG's classes.
   for (std::size_t row = 0; row < sim::kCounterRegistry.size(); ++row) {
     const sim::CounterRow& r = sim::kCounterRegistry[row];

@@ -1,9 +1,10 @@
 // The co-simulation's checkers, each watching one property of two implementations of the unit
 // (sim::Dut) that run in lock-step on the same inputs (compare lowRISC Ibex's cosim and
 // XiangShan's difftest: one testbench, independent checkers):
-//  - OutputChecker: every output port, every cycle, bit for bit (sim/unit_io.hpp kVertexFields);
+//  - OutputChecker: every output port, every cycle, bit for bit (sim/values/unit_io.hpp
+//    kVertexFields);
 //  - CounterChecker: every performance counter, every cycle and at the end;
-//  - sim::ArithmeticCheck (sim/reference_check.hpp): every accepted vertex against the float
+//  - sim::ArithmeticCheck (sim/run/reference_check.hpp): every accepted vertex against the float
 //    reference within the derived error bound;
 //  - ProgressChecker: some transfer within a number of cycles (a hang is a failure).
 #pragma once
@@ -12,8 +13,8 @@
 #include <optional>
 #include <string>
 
-#include "sim/dut.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/values/dut.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::cosim {
 
@@ -35,7 +36,7 @@ class OutputChecker {
 class CounterChecker {
  public:
   explicit CounterChecker(int int_blocks) : int_blocks_(int_blocks) {}
-  // The first counter that differs, in the order of sim/unit_io.hpp.
+  // The first counter that differs, in the order of sim/values/unit_io.hpp.
   std::optional<Mismatch> check(const sim::UnitCounters& expected, const sim::UnitCounters& actual) const;
 
  private:

@@ -12,10 +12,10 @@
 #include "model/base/error.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/host.hpp"
-#include "sim/model_dut.hpp"
-#include "sim/reference_check.hpp"
-#include "sim/testbench.hpp"
+#include "sim/run/reference_check.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/unit/model_dut.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::cosim {
 

@@ -17,11 +17,11 @@
 
 #include "cosim/coverage.hpp"
 #include "cosim/wave.hpp"
-#include "sim/config.hpp"
-#include "sim/cpg.hpp"
-#include "sim/gpe.hpp"
-#include "sim/reference_check.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/config/config.hpp"
+#include "sim/ge/gpe.hpp"
+#include "sim/run/reference_check.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::cosim {
 

@@ -7,7 +7,7 @@
 
 #include "model/base/error.hpp"
 #include "model/pattern.hpp"
-#include "sim/fixed.hpp"
+#include "sim/base/fixed.hpp"
 
 namespace tessim::cosim {
 

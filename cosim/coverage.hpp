@@ -13,10 +13,10 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "model/normal_mode.hpp"
-#include "sim/config.hpp"
-#include "sim/gpe.hpp"
-#include "sim/unit.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/config/config.hpp"
+#include "sim/ge/gpe.hpp"
+#include "sim/unit/unit.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::cosim {
 

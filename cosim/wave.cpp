@@ -13,8 +13,8 @@
 
 #include "model/base/error.hpp"
 #include "model/base/output_file.hpp"
-#include "sim/cpg.hpp"
-#include "sim/ports.hpp"
+#include "sim/config/ports.hpp"
+#include "sim/values/cpg.hpp"
 
 extern char** environ;
 
@@ -130,7 +130,7 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   auto hex = [&](const std::string& name, int width) { o << "@22\n" << name << range(width) << "\n"; };
   auto dec = [&](const std::string& name, int width) { o << "@24\n" << name << range(width) << "\n"; };
 
-  // Ports: their widths for this configuration (sim/ports.hpp).
+  // Ports: their widths for this configuration (sim/config/ports.hpp).
   auto port = [&](const char* name, bool as_hex = false) {
     const sim::Port* p = sim::find_port(name);
     if (!p) throw std::logic_error(std::string("wave layout: no port ") + name);

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "model/base/output_file.hpp"
-#include "sim/config.hpp"
+#include "sim/config/config.hpp"
 
 namespace tessim::cosim {
 

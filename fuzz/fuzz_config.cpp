@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "model/base/error.hpp"
-#include "sim/config.hpp"
-#include "sim/unit.hpp"
+#include "sim/config/config.hpp"
+#include "sim/unit/unit.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "model/pattern.hpp"
-#include "sim/config.hpp"
-#include "sim/testbench.hpp"
-#include "sim/unit.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/unit/unit.hpp"
 
 namespace {
 
@@ -117,7 +117,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (u.triangles_in != stream.size()) fail("triangles_in");
   // A cycle takes a triangle, refuses one, or has none offered.
   if (u.tri_stalls + u.triangles_in > u.cycles) fail("tri_stalls");
-  // Every block of classes of the registry (sim/blocks/counter_registry.hpp): its classes sum to
+  // Every block of classes of the registry (sim/base/counter_registry.hpp): its classes sum to
   // the cycles, per INT block for the INT blocks, whose busy cannot exceed the cycles.
   for (const CounterBlockInfo& b : kCounterBlocks) {
     if (!b.classes || !b.in_unit) continue;

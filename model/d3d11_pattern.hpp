@@ -6,7 +6,7 @@
 // This is the float reference, written from the tessellator's definition: factors and positions
 // are doubles, each of the definition's 16.16 roundings an explicit rounding to the 2^-16 grid,
 // and the pattern is built as the definition builds it (ring edges as lists of points, then the
-// rows of two neighbouring rings stitched). The unit's integer walk (sim/d3d11_walk.hpp) is
+// rows of two neighbouring rings stitched). The unit's integer walk (sim/values/d3d11_walk.hpp) is
 // an independent implementation of the same definition; the two share only the plain data of
 // model/d3d11_types.hpp and are compared point for point and triangle for triangle
 // (tests/sim/d3d11_walk_test.cpp).

@@ -1,6 +1,6 @@
 // Plain data of the Direct3D 11 triangle-domain pattern (docs/patterns.md), shared by its two
 // implementations: the float reference (model/d3d11_pattern.hpp) and the unit's integer walk
-// (sim/d3d11_walk.hpp). Nothing here computes a pattern.
+// (sim/values/d3d11_walk.hpp). Nothing here computes a pattern.
 //
 // Conventions: outer[i] subdivides the edge where barycentric coordinate i is 0 (outer[0]:
 // u = 0, outer[1]: v = 0, outer[2]: w = 0), as GL's gl_TessLevelOuter; points are (u, v) with

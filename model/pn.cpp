@@ -29,7 +29,7 @@ EdgeNormalResult edge_normal(const glm::dvec3& pi, const glm::dvec3& pj, const g
   // Below DBL_MIN the squared length is zero or has underflowed: the edge has no direction,
   // so there is nothing to reflect across and the mid-edge normal is along Ni + Nj. Quadratic
   // normalizes it as usual; reflect keeps its unnormalized convention (|n_ij| = |Ni + Nj| for
-  // every edge), as the unit's control-point generation does (sim/cpg.cpp: m = s).
+  // every edge), as the unit's control-point generation does (sim/values/cpg.cpp: m = s).
   if (!(edge_len2 >= std::numeric_limits<double>::min())) {
     if (mode == NormalMode::Reflect) return {sum, true};
     const double len = glm::length(sum);

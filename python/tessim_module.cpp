@@ -25,12 +25,12 @@
 #include "model/normal_mode.hpp"
 #include "model/pattern.hpp"
 #include "model/tessellate.hpp"
-#include "sim/config.hpp"
-#include "sim/host.hpp"
-#include "sim/params.hpp"
-#include "sim/report.hpp"
-#include "sim/schema.hpp"
-#include "sim/simulate.hpp"
+#include "sim/config/config.hpp"
+#include "sim/config/params.hpp"
+#include "sim/report/report.hpp"
+#include "sim/report/schema.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/values/host.hpp"
 
 namespace py = pybind11;
 

@@ -7,7 +7,7 @@
 
 #include "model/base/error.hpp"
 #include "rtl/verilated/verilated_unit.hpp"
-#include "sim/params.hpp"
+#include "sim/config/params.hpp"
 
 #include "rtl_variant_headers.inc"  // generated: the Verilated model of each variant
 

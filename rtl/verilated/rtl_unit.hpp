@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "model/normal_mode.hpp"
-#include "sim/config.hpp"
-#include "sim/dut.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/config/config.hpp"
+#include "sim/values/dut.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::rtl {
 

@@ -1,5 +1,5 @@
 // The unit's performance counters (the perf_* outputs of rtl/tess_unit.sv; the rows of
-// sim/blocks/counter_registry.hpp, definitions in docs/microarchitecture.md §10). Every cycle is
+// sim/base/counter_registry.hpp, definitions in docs/microarchitecture.md §10). Every cycle is
 // counted in exactly one class per block.
 #pragma once
 
@@ -8,8 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "sim/blocks/counter_registry.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/base/counter_registry.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::sim {
 

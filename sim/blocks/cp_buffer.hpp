@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim/cpg.hpp"
+#include "sim/values/cpg.hpp"
 
 namespace tessim::sim {
 
@@ -27,7 +27,7 @@ class ControlPointBuffer {
     std::uint32_t id = 0;
   };
 
-  // buffers: HardwareConfig::cp_buffers, validated by the parameter table (sim/params.cpp).
+  // buffers: HardwareConfig::cp_buffers, validated by the parameter table (sim/config/params.cpp).
   explicit ControlPointBuffer(int buffers) : count_(buffers) {
     if (buffers < 1 || buffers > kMaxBuffers)
       throw std::invalid_argument("ControlPointBuffer: 1.." + std::to_string(kMaxBuffers) + " buffers");

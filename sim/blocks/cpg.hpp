@@ -1,7 +1,7 @@
 // Control-point generation as a timed block, rtl/tess_cpg.sv (docs/microarchitecture.md §5):
 // accepts a triangle from the TRI FIFO, computes for C cycles, writes the control points into
 // the buffer at wr_ptr when that one is EMPTY. The values come from the untimed fixed-point
-// CPG (sim/cpg.hpp, compute_control_points); this block only decides when.
+// CPG (sim/values/cpg.hpp, compute_control_points); this block only decides when.
 //
 // Mappings: dedicated (own datapath: accept, C - 1 compute cycles, write) or on the geometry
 // engine (the counter is loaded with C and counts only cycles the GPE grants, cpg_step).
@@ -14,15 +14,15 @@
 #include <string>
 #include <vector>
 
-#include "sim/blocks/counter_registry.hpp"
+#include "sim/base/counter_registry.hpp"
 #include "sim/blocks/cp_buffer.hpp"
-#include "sim/cpg.hpp"
+#include "sim/values/cpg.hpp"
 
 namespace tessim::sim {
 
 // What the CPG does in a cycle (finer than its statistics class, for traces).
 enum class CpgAction : std::uint8_t { Idle, Accept, Compute, WaitGpe, Write, Blocked };
-// Its statistics class is a CpgClass (sim/blocks/counter_registry.hpp).
+// Its statistics class is a CpgClass (sim/base/counter_registry.hpp).
 
 const char* to_string(CpgAction a);
 
@@ -140,7 +140,7 @@ class CpgBlock {
 class CpgArray {
  public:
   static constexpr int kMaxCopies = 16;
-  // copies: HardwareConfig::cpg.copies, validated by the parameter table (sim/params.cpp);
+  // copies: HardwareConfig::cpg.copies, validated by the parameter table (sim/config/params.cpp);
   // more than one needs the dedicated mapping (the GE-mapped CPG is one program on the GE).
   CpgArray(int copies, NormalMode normals, const NumberFormat& format, int cycles, bool gpe_mapping, bool tags,
            const CpgVariant& variant)

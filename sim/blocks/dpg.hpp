@@ -1,6 +1,6 @@
 // Domain-point generator of rtl/tess_dpg.sv (docs/microarchitecture.md §7): walks the pattern
 // of the patch at the buffers' rd_ptr. Uniform pattern: j fastest, (0,0), (1,0), ..., (L,0),
-// (0,1), ..., (0,L). D3D11 pattern: the tessellator's order (sim/d3d11_walk.hpp,
+// (0,1), ..., (0,L). D3D11 pattern: the tessellator's order (sim/values/d3d11_walk.hpp,
 // D3D11PointWalker) from the walk set up while the CPG ran. A point is consumed when a TE
 // context is allocated for it.
 #pragma once
@@ -9,8 +9,8 @@
 #include <cstdint>
 
 #include "model/pattern.hpp"
+#include "sim/base/fixed.hpp"
 #include "sim/blocks/cp_buffer.hpp"
-#include "sim/fixed.hpp"
 
 namespace tessim::sim {
 

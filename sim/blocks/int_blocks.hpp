@@ -16,7 +16,7 @@ namespace tessim::sim {
 
 class IntBlocks {
  public:
-  // The configuration limits: N <= 32, Λ <= 8 (sim/params.cpp).
+  // The configuration limits: N <= 32, Λ <= 8 (sim/config/params.cpp).
   static constexpr int kMaxBlocks = 32;
   static constexpr int kMaxLatency = 8;
 

@@ -11,14 +11,14 @@
 #include <utility>
 #include <vector>
 
-#include "sim/blocks/counter_registry.hpp"
+#include "sim/base/counter_registry.hpp"
+#include "sim/base/fixed.hpp"
+#include "sim/base/int_ops.hpp"
 #include "sim/blocks/cp_buffer.hpp"
 #include "sim/blocks/dpg.hpp"
 #include "sim/blocks/int_blocks.hpp"
 #include "sim/blocks/op_masks.hpp"
-#include "sim/fixed.hpp"
-#include "sim/int_ops.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::sim {
 
@@ -26,13 +26,13 @@ namespace tessim::sim {
 struct IssuedOp {
   int block = 0;            // INT block (the i-th issued op of a cycle goes to block i)
   int context = 0;          // context slot 0..V-1
-  int op = 0;               // 0..13, sim/int_ops.hpp
+  int op = 0;               // 0..13, sim/base/int_ops.hpp
   std::uint64_t vertex = 0; // sequence number of the vertex (allocation order since reset)
 };
 
 class Te {
  public:
-  static constexpr int kMaxContexts = OpMasks::kMaxLanes;  // V: the configuration limit (sim/params.cpp)
+  static constexpr int kMaxContexts = OpMasks::kMaxLanes;  // V: the configuration limit (sim/config/params.cpp)
 
   Te(int int_blocks, int int_latency, int contexts, NormalMode normals, const NumberFormat& format);
 

@@ -10,13 +10,13 @@
 #include <array>
 #include <cstdint>
 
+#include "sim/base/fixed.hpp"
+#include "sim/base/int_ops.hpp"
 #include "sim/blocks/cp_buffer.hpp"
 #include "sim/blocks/dpg.hpp"
 #include "sim/blocks/int_blocks.hpp"
 #include "sim/blocks/te.hpp"
-#include "sim/fixed.hpp"
-#include "sim/int_ops.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::sim {
 

@@ -1,5 +1,5 @@
-// `tessim sim --chunks` (sim/chunked.hpp, docs/statistics.md "Chunked runs"): the same mesh file
-// as a single run, the chunks' statistics, and a refusal of what it cannot merge.
+// `tessim sim --chunks` (sim/run/chunked.hpp, docs/statistics.md "Chunked runs"): the same mesh
+// file as a single run, the chunks' statistics, and a refusal of what it cannot merge.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"
 

@@ -1,6 +1,6 @@
 // The unit's configuration on the command line (app/config_flags.hpp): one flag per parameter of
-// sim/params.hpp with its aliases, overriding a --config file, bad values naming the key; every
-// RTL build's flags give its hardware; `tessim schema` prints the schema.
+// sim/config/params.hpp with its aliases, overriding a --config file, bad values naming the key;
+// every RTL build's flags give its hardware; `tessim schema` prints the schema.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,10 +13,10 @@
 
 #include "app/config_flags.hpp"
 #include "model/base/error.hpp"
-#include "sim/config.hpp"
-#include "sim/params.hpp"
-#include "sim/rtl_builds.hpp"
-#include "sim/schema.hpp"
+#include "sim/config/config.hpp"
+#include "sim/config/params.hpp"
+#include "sim/config/rtl_builds.hpp"
+#include "sim/report/schema.hpp"
 #include "tests/support/param_values.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"

@@ -20,10 +20,10 @@
 
 #include "app/report_html.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/blocks/counter_registry.hpp"
-#include "sim/config.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
+#include "sim/base/counter_registry.hpp"
+#include "sim/config/config.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
 #include "tests/support/run_tessim.hpp"
 #include "tests/support/temp_dir.hpp"
 
@@ -367,7 +367,7 @@ TEST(ReportCli, CompareLeavesTheTimelineOut) {
   EXPECT_EQ(r.out.find("timeline"), std::string::npos);
 }
 
-// The legend: every class of the counter registry (sim/blocks/counter_registry.hpp) of the TE,
+// The legend: every class of the counter registry (sim/base/counter_registry.hpp) of the TE,
 // CPG and GPE with its colour (the run's own statistics: tests/sim/counter_registry_test.cpp).
 TEST(ReportCli, LegendShowsEveryClassWithItsColour) {
   Mesh mesh = load_mesh("/usr/share/assimp/models/STL/sphereWithHole.stl");

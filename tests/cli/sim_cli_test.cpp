@@ -225,7 +225,7 @@ TEST(SimCli, ScheduleAndTrace) {
   EXPECT_EQ(traced_in_window, schedule);
   EXPECT_EQ(traced, vertices * 14);
   EXPECT_EQ(issue_cycle.size(), vertices * 14);
-  // Dependences (sim/int_ops.hpp, latency 1): an op issues after the ops it reads.
+  // Dependences (sim/base/int_ops.hpp, latency 1): an op issues after the ops it reads.
   for (std::uint64_t v = 0; v < vertices; ++v)
     for (const auto& [op, deps] : std::vector<std::pair<int, std::vector<int>>>{
              {9, {0, 1, 3}}, {10, {1, 2, 4}}, {11, {3, 4, 5}}, {12, {6, 7, 8}}, {13, {9, 10, 11}}})

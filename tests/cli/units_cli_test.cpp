@@ -1,6 +1,6 @@
-// `tessim sim --units M --threads T` (sim/system_threads.hpp): the mesh file and the statistics of
-// a system of units are the same bytes whatever the thread count (the wall time aside), and the
-// thread count is refused where it makes no sense.
+// `tessim sim --units M --threads T` (sim/system/system_threads.hpp): the mesh file and the
+// statistics of a system of units are the same bytes whatever the thread count (the wall time
+// aside), and the thread count is refused where it makes no sense.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -11,7 +11,7 @@
 #include "cosim/cosim.hpp"
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/host.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::cosim {
 namespace {

@@ -13,7 +13,7 @@
 #include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/host.hpp"
+#include "sim/values/host.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace tessim::cosim {

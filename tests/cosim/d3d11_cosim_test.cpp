@@ -13,8 +13,8 @@
 #include "cosim/cosim.hpp"
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/cpg.hpp"
-#include "sim/host.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::cosim {
 namespace {

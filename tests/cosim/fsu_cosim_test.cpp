@@ -16,8 +16,8 @@
 #include "cosim/cosim.hpp"
 #include "model/base/error.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/cpg.hpp"
-#include "sim/unit.hpp"
+#include "sim/unit/unit.hpp"
+#include "sim/values/cpg.hpp"
 
 namespace tessim::cosim {
 namespace {

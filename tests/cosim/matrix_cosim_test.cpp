@@ -12,7 +12,7 @@
 
 #include "cosim/cosim.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/cpg.hpp"
+#include "sim/values/cpg.hpp"
 
 namespace tessim::cosim {
 namespace {

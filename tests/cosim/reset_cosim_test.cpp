@@ -10,8 +10,8 @@
 
 #include "cosim/cosim.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/cpg.hpp"
-#include "sim/host.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::cosim {
 namespace {

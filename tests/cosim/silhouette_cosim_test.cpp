@@ -15,9 +15,9 @@
 #include "model/mesh_io.hpp"
 #include "model/silhouette.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/datapath.hpp"
-#include "sim/fixed.hpp"
-#include "sim/host.hpp"
+#include "sim/base/fixed.hpp"
+#include "sim/values/datapath.hpp"
+#include "sim/values/host.hpp"
 #include "model/pn.hpp"
 
 namespace tessim::cosim {
@@ -141,7 +141,7 @@ std::vector<sim::TriangleFx> rounding_ties(const sim::NumberFormat& f, std::size
       const sim::FxVec& pf = tri.p[near_b ? a : b];
       const sim::FxVec& nn = tri.n[near_b ? b : a];
       const i128 w = sim::dot_exact(d, nn);
-      // The tangent point from a given alpha w (the CPG's formula, sim/cpg.cpp).
+      // The tangent point from a given alpha w (the CPG's formula, sim/values/cpg.cpp).
       auto tangent = [&](i128 wa) {
         sim::FxVec t{};
         std::uint8_t flags = 0;

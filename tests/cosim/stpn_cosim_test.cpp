@@ -9,8 +9,8 @@
 #include "cosim/cosim.hpp"
 #include "model/base/error.hpp"
 #include "model/stpn_import.hpp"
-#include "sim/cpg.hpp"
-#include "sim/host.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::cosim {
 namespace {

@@ -21,7 +21,7 @@ fail() { echo "install_consumer: $*" >&2; exit 1; }
 for f in lib/libtessim_base.a lib/libtessim_model.a lib/libtessim_sim.a lib/libtessim_render.a \
          lib/cmake/tessim/tessimConfig.cmake lib/cmake/tessim/tessimConfigVersion.cmake \
          lib/cmake/tessim/tessimTargets.cmake include/tessim/model/mesh_io.hpp \
-         include/tessim/model/base/error.hpp include/tessim/sim/simulate.hpp include/tessim/render/raster.hpp bin/tessim lib/tessim/tessim_imageio.so; do
+         include/tessim/model/base/error.hpp include/tessim/sim/run/simulate.hpp include/tessim/render/raster.hpp bin/tessim lib/tessim/tessim_imageio.so; do
   [ -e "$prefix/$f" ] || fail "$f was not installed"
 done
 # Nothing installed points back into the source or build tree.

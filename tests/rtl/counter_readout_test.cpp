@@ -1,5 +1,5 @@
 // The Verilated read-out of the counters (rtl/verilated/verilated_unit.hpp reads the port of every
-// row of sim/blocks/counter_registry.hpp that has one): after co-simulated runs, every such row
+// row of sim/base/counter_registry.hpp that has one): after co-simulated runs, every such row
 // of the RTL equals the cycle model's, and each was counted (non-zero) in at least one run, so
 // a row the read-out skipped (left 0) could not pass. Rows without a port read 0 from the RTL.
 #include <gtest/gtest.h>
@@ -9,8 +9,8 @@
 
 #include "cosim/cosim.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/blocks/counter_registry.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/base/counter_registry.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::cosim {
 namespace {

@@ -1,7 +1,8 @@
-// sim/ports.hpp's widths against the Verilated models themselves: every port of every compiled
-// build (Verilator's generated header declares each port with its bit range) and the TRI and VTX
-// FIFO entry widths (tess_unit's TriW and VtxW, the registers tri_head and vtx_head of the
-// generated root header); and rtl/builds.json (sim/rtl_builds.hpp) against the factory's table.
+// sim/config/ports.hpp's widths against the Verilated models themselves: every port of every
+// compiled build (Verilator's generated header declares each port with its bit range) and the TRI
+// and VTX FIFO entry widths (tess_unit's TriW and VtxW, the registers tri_head and vtx_head of the
+// generated root header); and rtl/builds.json (sim/config/rtl_builds.hpp) against the factory's
+// table.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -12,8 +13,8 @@
 #include <utility>
 
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/ports.hpp"
-#include "sim/rtl_builds.hpp"
+#include "sim/config/ports.hpp"
+#include "sim/config/rtl_builds.hpp"
 
 namespace {
 

@@ -19,11 +19,11 @@
 #include "model/normal_mode.hpp"
 #include "model/pattern.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/cpg.hpp"
-#include "sim/datapath.hpp"
-#include "sim/fixed.hpp"
-#include "sim/int_ops.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/base/fixed.hpp"
+#include "sim/base/int_ops.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/datapath.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim {
 namespace {
@@ -34,7 +34,7 @@ using sim::VertexFx;
 
 // ---- the expected output, computed from the C++ definitions of the arithmetic ----
 
-// The untimed datapath (sim/datapath.hpp): control points, then de Casteljau level by level.
+// The untimed datapath (sim/values/datapath.hpp): control points, then de Casteljau level by level.
 std::vector<VertexFx> expected_patch(const TriangleFx& tri, NormalMode mode, const sim::NumberFormat& f) {
   return sim::evaluate_patch(tri, mode, f);
 }

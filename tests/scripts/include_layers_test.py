@@ -4,14 +4,17 @@
 Reads the layer lists from the header comments of model/CMakeLists.txt and sim/CMakeLists.txt
 ("# Layers of DIR/, lowest first" followed by "#   name: component ..." lines) and checks every
 project include (#include "model/..." or "sim/...") of the .hpp/.cpp files under model/ and
-sim/:
+sim/ and their folders (a component is named by its path below the library: "run/simulate"):
   - model/ includes nothing of sim/, and neither includes render/, app/, cosim/ or rtl/;
   - every file belongs to a component named in a layer (a new file must be placed);
   - a file includes only components of its own layer or of lower ones (no upward include);
   - the components form no cycle (a component is a header with its .cpp; "a+b" in a layer makes
-    a and b one component).
-Before it checks the tree, it checks itself: an upward include and a cycle added to the parsed
-tree must both be reported, so that a checker which reports nothing cannot pass.
+    a and b one component);
+  - a file in a folder of sim/ includes only its own folder and those before it, in the order of
+    the "# Folders of sim/, lowest first: ..." line (a new folder must be placed there too).
+Before it checks the tree, it checks itself: an upward include, a cycle and an include of a later
+folder added to the parsed tree must all be reported, so that a checker which reports nothing
+cannot pass.
 
 Usage: include_layers_test.py [SOURCE_DIR]   (default: the repository holding this script)
 """
@@ -49,10 +52,26 @@ def parse_layers(cmake_file, directory):
     return layers
 
 
+def parse_folders(cmake_file, directory):
+    """The folders of `directory`, lowest first, from the "# Folders of DIR/, lowest first: ..." line."""
+    marker = f"# Folders of {directory}/, lowest first:"
+    for line in cmake_file.read_text().splitlines():
+        if line.startswith(marker):
+            return line[len(marker):].split()
+    raise SystemExit(f"include_layers_test: {cmake_file}: no line starting with {marker!r}")
+
+
+def folder_of(path):
+    """The folder of a path below its library ("sim/run/simulate.hpp" -> "run"); None at the top."""
+    parts = path.split("/")
+    return parts[1] if len(parts) > 2 else None
+
+
 def component_of(stem, layers):
     """(layer index, component name) of a file stem such as "blocks/te", or None.
 
-    A name wins over a "dir/*" pattern, so that blocks/counter_registry may sit below blocks/*.
+    A name wins over a "dir/*" pattern, so that one file of a folder may sit in another layer than
+    the folder's others.
     """
     for index, (_, patterns) in enumerate(layers):
         for pattern in patterns:
@@ -80,9 +99,14 @@ def library_of(path):
     return path.split("/", 1)[0]
 
 
-def check(files, layers_by_library):
-    """Every violation, as text; empty when the tree keeps its layers."""
+def check(files, layers_by_library, folders=()):
+    """Every violation, as text; empty when the tree keeps its layers (and `folders`, the order of
+    sim/'s folders)."""
     errors = []
+    for path in files:
+        folder = folder_of(path)
+        if library_of(path) == "sim" and folder is not None and folder not in folders:
+            errors.append(f"{path}: in no folder of the folder line of sim/CMakeLists.txt")
     place = {}  # path -> (library, layer index, component)
     for path in files:
         library = library_of(path)
@@ -112,6 +136,10 @@ def check(files, layers_by_library):
             if inc not in files:
                 errors.append(f"{path}: includes {inc}, which does not exist")
                 continue
+            source_folder, target_folder = folder_of(path), folder_of(inc)
+            if (library == "sim" and source_folder in folders and target_folder in folders
+                    and folders.index(target_folder) > folders.index(source_folder)):
+                errors.append(f"{path}: includes {inc}: folder {target_folder}/ comes after {source_folder}/")
             if inc not in place:
                 continue  # reported above
             _, target_layer, target_component = place[inc]
@@ -185,6 +213,7 @@ def path_within(start, scc, edges):
 def main():
     root = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parents[2]
     layers = {library: parse_layers(root / library / "CMakeLists.txt", library) for library in LIBRARIES}
+    folders = parse_folders(root / "sim" / "CMakeLists.txt", "sim")
     files = scan(root)
 
     # Self-check on the parsed tree: an include from the lowest layer of sim/ to its highest, and
@@ -213,14 +242,23 @@ def main():
     cyclic[b] = files[b] + [a]
     if not any(e.startswith("include cycle:") for e in check(cyclic, layers)):
         raise SystemExit(f"include_layers_test: self-check: {a} and {b} including each other was not reported")
+    # A header of the first folder including one of the last: the folder order must catch it.
+    sim_headers = [p for p in files if library_of(p) == "sim" and p.endswith(".hpp")]
+    first = next(p for p in sim_headers if folder_of(p) == folders[0])
+    last = next(p for p in sim_headers if folder_of(p) == folders[-1])
+    later = dict(files)
+    later[first] = files[first] + [last]
+    if not any(e.startswith(f"{first}: includes {last}: folder") for e in check(later, layers, folders)):
+        raise SystemExit(f"include_layers_test: self-check: {first} including {last} was not reported")
 
-    errors = check(files, layers)
+    errors = check(files, layers, folders)
     for e in errors:
         print("include_layers_test: " + e, file=sys.stderr)
     if errors:
         return 1
     print(f"include_layers_test: {len(files)} files of {', '.join(LIBRARIES)} keep their layers "
-          f"({', '.join(f'{lib}: ' + ' < '.join(n for n, _ in layers[lib]) for lib in LIBRARIES)})")
+          f"({', '.join(f'{lib}: ' + ' < '.join(n for n, _ in layers[lib]) for lib in LIBRARIES)}) "
+          f"and sim/ its folders ({' < '.join(folders)})")
     return 0
 
 

@@ -1,4 +1,4 @@
-// Chunked runs (sim/chunked.hpp, docs/statistics.md "Chunked runs"): against a single run of
+// Chunked runs (sim/run/chunked.hpp, docs/statistics.md "Chunked runs"): against a single run of
 // the same stream, the same vertices bit for bit and the same timing-independent counts, the
 // statistics merged consistently (timeline included), and the cycles within the documented
 // bound per chunk boundary. `tessim sim --chunks`: tests/cli/chunked_cli_test.cpp.
@@ -14,9 +14,9 @@
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"
-#include "sim/chunked.hpp"
-#include "sim/config.hpp"
-#include "sim/simulate.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/chunked.hpp"
+#include "sim/run/simulate.hpp"
 
 namespace tessim::sim {
 namespace {

@@ -1,4 +1,4 @@
-// The counter registry (sim/blocks/counter_registry.hpp) against the RTL's counter ports, and
+// The counter registry (sim/base/counter_registry.hpp) against the RTL's counter ports, and
 // the outputs derived from it: every perf_*_o output of rtl/tess_unit.sv has exactly one row and
 // every row's port exists; every row reaches the statistics JSON, its units and the summary (the
 // report's legend: tests/cli/report_cli_test.cpp). (tests/rtl/counter_readout_test.cpp checks
@@ -14,11 +14,11 @@
 #include <nlohmann/json.hpp>
 
 #include "model/mesh_io.hpp"
-#include "sim/blocks/counter_registry.hpp"
-#include "sim/config.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/base/counter_registry.hpp"
+#include "sim/config/config.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace tessim::sim {
 namespace {
@@ -49,7 +49,7 @@ TEST(CounterRegistry, EveryRtlCounterPortHasExactlyOneRow) {
     EXPECT_EQ(declared, 1) << port << " declared " << declared << " times";
     int rows = 0;
     for (const CounterRow& r : kCounterRegistry) rows += r.port == port;
-    EXPECT_EQ(rows, 1) << port << ": " << rows << " rows of sim/blocks/counter_registry.hpp name it";
+    EXPECT_EQ(rows, 1) << port << ": " << rows << " rows of sim/base/counter_registry.hpp name it";
   }
   for (const CounterRow& r : kCounterRegistry) {
     if (r.has_port()) {

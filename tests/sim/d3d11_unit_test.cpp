@@ -17,11 +17,11 @@
 #include "model/d3d11_pattern.hpp"
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/config.hpp"
-#include "sim/datapath.hpp"
-#include "sim/host.hpp"
-#include "sim/model_dut.hpp"
-#include "sim/testbench.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/unit/model_dut.hpp"
+#include "sim/values/datapath.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {

@@ -1,6 +1,6 @@
-// The unit's integer D3D11 walk (sim/d3d11_walk.hpp): the properties every implementation of the
-// pattern has (tests/support/d3d11_pattern_checks.hpp), its fixed-point constants, its setup and
-// point walk, and the walk against the float reference (model/d3d11_pattern.hpp), written
+// The unit's integer D3D11 walk (sim/values/d3d11_walk.hpp): the properties every implementation of
+// the pattern has (tests/support/d3d11_pattern_checks.hpp), its fixed-point constants, its setup
+// and point walk, and the walk against the float reference (model/d3d11_pattern.hpp), written
 // independently from the same definition: the same factors, points and triangles, in the same
 // order, over a dense grid of factors of every partitioning.
 #include <array>
@@ -20,11 +20,11 @@
 #include "model/d3d11_pattern.hpp"
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/config.hpp"
-#include "sim/d3d11_walk.hpp"
-#include "sim/datapath.hpp"
-#include "sim/host.hpp"
-#include "sim/reference_check.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/reference_check.hpp"
+#include "sim/values/d3d11_walk.hpp"
+#include "sim/values/datapath.hpp"
+#include "sim/values/host.hpp"
 #include "tests/support/d3d11_pattern_checks.hpp"
 
 namespace tessim::sim {

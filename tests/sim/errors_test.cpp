@@ -1,4 +1,4 @@
-// `tessim sim --errors` (sim/reference_check.hpp): the end-to-end figures equal a direct
+// `tessim sim --errors` (sim/run/reference_check.hpp): the end-to-end figures equal a direct
 // comparison of the simulated mesh with `tessellate_mesh`'s output, vertex by vertex; the
 // arithmetic check holds every vertex within its derived bound at the default widths and
 // catches a vertex that is off by more than the bound.
@@ -10,10 +10,10 @@
 
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"
-#include "sim/error_bound.hpp"
-#include "sim/host.hpp"
-#include "sim/reference_check.hpp"
-#include "sim/simulate.hpp"
+#include "sim/run/reference_check.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/values/error_bound.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {

@@ -13,13 +13,13 @@
 
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/config.hpp"
-#include "sim/gpe.hpp"
-#include "sim/host.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
-#include "sim/testbench.hpp"
-#include "sim/unit.hpp"
+#include "sim/config/config.hpp"
+#include "sim/ge/gpe.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/unit/unit.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {

@@ -1,7 +1,7 @@
-// The geometry engine as a shader machine (sim/ge_cost.hpp, sim/ge_evaluation.hpp): its cycles per
-// vertex from the operation counts; --displace applied to the unit's output in float and charged
-// on top of K; evaluation gpe (the DPG feeding the GE, no TE) against the float reference and the
-// unit, its buffers and its statistics.
+// The geometry engine as a shader machine (sim/ge/ge_cost.hpp, sim/ge/ge_evaluation.hpp): its
+// cycles per vertex from the operation counts; --displace applied to the unit's output in float and
+// charged on top of K; evaluation gpe (the DPG feeding the GE, no TE) against the float reference
+// and the unit, its buffers and its statistics.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,9 +13,9 @@
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"
-#include "sim/analytic.hpp"
-#include "sim/ge_cost.hpp"
-#include "sim/simulate.hpp"
+#include "sim/config/analytic.hpp"
+#include "sim/ge/ge_cost.hpp"
+#include "sim/run/simulate.hpp"
 
 namespace tessim::sim {
 namespace {

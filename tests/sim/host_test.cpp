@@ -1,4 +1,4 @@
-// Host-side conversion (sim/host.hpp) and the unit's numbers on real meshes: scaling and
+// Host-side conversion (sim/values/host.hpp) and the unit's numbers on real meshes: scaling and
 // rounding, saturation reported as bad input, the end-to-end error bound against the float
 // reference (docs/number-formats.md), and watertightness of shared edges.
 #include <gtest/gtest.h>
@@ -16,10 +16,10 @@
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"
 #include "model/pn.hpp"
-#include "sim/config.hpp"
-#include "sim/error_bound.hpp"
-#include "sim/host.hpp"
-#include "sim/simulate.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/values/error_bound.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {
@@ -150,7 +150,7 @@ TEST(HostSaturation, IsAnInputErrorNamingMeshAndTriangle) {
 //
 // Three terms, each bounded per patch in unit coordinates:
 //   arithmetic  the unit against the reference built from the quantized input at the
-//               quantized barycentrics (sim/error_bound.hpp);
+//               quantized barycentrics (sim/values/error_bound.hpp);
 //   input       the reference moved by quantizing P and N (|dP_c|, |dN_c| <= eps = 2^-(F+1));
 //   domain      the reference moved by evaluating at the quantized barycentrics
 //               (|du|, |dv| <= 2^-(B+1), w = 1 - u - v exact).

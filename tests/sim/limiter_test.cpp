@@ -6,9 +6,9 @@
 #include <string>
 
 #include "model/mesh_io.hpp"
-#include "sim/analytic.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
+#include "sim/config/analytic.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
 
 namespace tessim::sim {
 namespace {

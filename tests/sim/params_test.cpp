@@ -1,4 +1,4 @@
-// The description of the unit's parameters (sim/params.hpp) and everything driven by it:
+// The description of the unit's parameters (sim/config/params.hpp) and everything driven by it:
 // JSON round trip, ranges, the schema, the README table. The command-line flags and aliases and
 // the `tessim schema` binary: tests/cli/config_cli_test.cpp.
 #include <gtest/gtest.h>
@@ -19,14 +19,14 @@
 
 #include "model/base/error.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/config.hpp"
-#include "sim/cpg.hpp"
-#include "sim/error_bound.hpp"
-#include "sim/int_ops.hpp"
-#include "sim/params.hpp"
-#include "sim/report.hpp"
-#include "sim/schema.hpp"
-#include "sim/simulate.hpp"
+#include "sim/base/int_ops.hpp"
+#include "sim/config/config.hpp"
+#include "sim/config/params.hpp"
+#include "sim/report/report.hpp"
+#include "sim/report/schema.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/error_bound.hpp"
 #include "tests/support/param_values.hpp"
 
 namespace tessim::sim {
@@ -181,7 +181,7 @@ TEST(Schema, IntOpsAndStatistics) {
   EXPECT_EQ(s["statistics"]["classes"]["gpe"], json({"busy", "stalled", "cpg", "starved"}));
 }
 
-// The cycle model issues exactly the ops of the table (sim/int_ops.hpp) for every normal mode:
+// The cycle model issues exactly the ops of the table (sim/base/int_ops.hpp) for every normal mode:
 // over a whole run, the INT blocks' busy cycles add up to vertices x ops per vertex (1710
 // vertices of sphereWithHole at L = 2: 23940 ops quadratic and reflect, 18810 linear), and the
 // statistics report that ratio and the CPG's cycles per triangle.

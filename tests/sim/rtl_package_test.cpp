@@ -1,6 +1,6 @@
-// The C++ description of the RTL's boundary and tables (sim/ports.hpp, sim/int_ops.hpp,
-// sim/rtl_builds.hpp) against the SystemVerilog itself: tess_pkg.sv's widths, codes and INT-op
-// constants, tess_te.sv's operand and dependence table, tess_unit.sv's port list. Every
+// The C++ description of the RTL's boundary and tables (sim/config/ports.hpp, sim/base/int_ops.hpp,
+// sim/config/rtl_builds.hpp) against the SystemVerilog itself: tess_pkg.sv's widths, codes and
+// INT-op constants, tess_te.sv's operand and dependence table, tess_unit.sv's port list. Every
 // difference fails. (tests/rtl/rtl_ports_test.cpp checks the widths on the Verilated models.)
 #include <gtest/gtest.h>
 
@@ -15,12 +15,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/int_ops.hpp"
-#include "sim/params.hpp"
-#include "sim/ports.hpp"
-#include "sim/rtl_builds.hpp"
-#include "sim/schema.hpp"
-#include "sim/unit_io.hpp"
+#include "sim/base/int_ops.hpp"
+#include "sim/config/params.hpp"
+#include "sim/config/ports.hpp"
+#include "sim/config/rtl_builds.hpp"
+#include "sim/report/schema.hpp"
+#include "sim/values/unit_io.hpp"
 
 namespace {
 
@@ -120,7 +120,7 @@ TEST(RtlPackage, PortCodesAreTessPkgs) {
 }
 
 // tess_pkg's INT-op constants and tess_te.sv's operand and dependence table against
-// sim/int_ops.hpp.
+// sim/base/int_ops.hpp.
 TEST(RtlPackage, IntOpTableIsTheRtls) {
   const std::string pkg = read_rtl("tess_pkg.sv");
   const auto ints = pkg_ints(pkg);
@@ -181,7 +181,7 @@ TEST(RtlPackage, IntOpTableIsTheRtls) {
 }
 
 // The port list of tess_unit.sv, in order, with directions; the vertex item is the vertex
-// fields the co-simulation compares (sim/unit_io.hpp).
+// fields the co-simulation compares (sim/values/unit_io.hpp).
 TEST(RtlPackage, PortsAreTessUnits) {
   const std::string unit = read_rtl("tess_unit.sv");
   const std::regex decl(R"(\b(input|output)\s+logic\s*(?:\[[^\]]*\])?\s*(\w+)\s*[,)\n])");

@@ -1,7 +1,8 @@
-// The silhouette blend in fixed point (sim/cpg.hpp, alpha_bits > 0): alpha = 1 is plain PN bit
-// for bit, alpha = 0 the flat triangle, any alpha follows the float blend (model/silhouette.hpp)
-// within the tangent bound; the host's rounding of alpha; the extra CPG step; the unit's input
-// contract; and a whole mesh through the cycle model against the float reference.
+// The silhouette blend in fixed point (sim/values/cpg.hpp, alpha_bits > 0): alpha = 1 is plain PN
+// bit for bit, alpha = 0 the flat triangle, any alpha follows the float blend
+// (model/silhouette.hpp) within the tangent bound; the host's rounding of alpha; the extra CPG
+// step; the unit's input contract; and a whole mesh through the cycle model against the float
+// reference.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,11 +12,11 @@
 #include "model/mesh_io.hpp"
 #include "model/pn.hpp"
 #include "model/silhouette.hpp"
-#include "sim/cpg.hpp"
-#include "sim/error_bound.hpp"
-#include "sim/host.hpp"
-#include "sim/simulate.hpp"
-#include "sim/unit.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/unit/unit.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/error_bound.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {

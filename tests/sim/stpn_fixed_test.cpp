@@ -1,4 +1,4 @@
-// The scalar-tagged control points in fixed point (sim/cpg.hpp, compute_control_points with
+// The scalar-tagged control points in fixed point (sim/values/cpg.hpp, compute_control_points with
 // tags): neutral tags give plain PN bit for bit, the result follows the float reference
 // (model/pn.hpp make_stpn_patch) to within the format's precision, and shared edges of real
 // ST-meshes come out bit-identical from both patches.
@@ -16,11 +16,11 @@
 #include "model/mesh_io.hpp"
 #include "model/pn.hpp"
 #include "model/stpn_import.hpp"
-#include "sim/cpg.hpp"
-#include "sim/datapath.hpp"
-#include "sim/host.hpp"
-#include "sim/reference_check.hpp"
-#include "sim/simulate.hpp"
+#include "sim/run/reference_check.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/datapath.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {

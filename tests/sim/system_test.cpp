@@ -1,7 +1,7 @@
-// A system of several units (sim/system.hpp): the output is the single unit's vertex for vertex
-// whatever the distribution, batch, buffer, ports and stalls; the buffer never holds more than R
-// and never deadlocks; the counts add up; M units deliver M times one unit's rate where the units
-// limit, and the reassembly buffer's size decides it on adaptive views.
+// A system of several units (sim/system/system.hpp): the output is the single unit's vertex for
+// vertex whatever the distribution, batch, buffer, ports and stalls; the buffer never holds more
+// than R and never deadlocks; the counts add up; M units deliver M times one unit's rate where the
+// units limit, and the reassembly buffer's size decides it on adaptive views.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -12,9 +12,9 @@
 #include "model/base/error.hpp"
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
-#include "sim/system.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/system/system.hpp"
 
 namespace tessim::sim {
 namespace {

@@ -1,9 +1,9 @@
-// A system of units clocked on several threads (sim/system_threads.hpp) is the one-thread system
-// cycle for cycle: the same triangle taken and the same vertices out of the ports in every cycle,
-// the same counters of every unit, port and buffer at the end — over the distribution policies,
-// batches, buffers down to 2 slots (the blocking regime, where units wait for the coordinator's
-// decisions), ordered and unordered reassembly, random port stalls, uniform and adaptive D3D11
-// factors, more threads than cores.
+// A system of units clocked on several threads (sim/system/system_threads.hpp) is the one-thread
+// system cycle for cycle: the same triangle taken and the same vertices out of the ports in every
+// cycle, the same counters of every unit, port and buffer at the end — over the distribution
+// policies, batches, buffers down to 2 slots (the blocking regime, where units wait for the
+// coordinator's decisions), ordered and unordered reassembly, random port stalls, uniform and
+// adaptive D3D11 factors, more threads than cores.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -12,11 +12,11 @@
 
 #include "model/factors.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/host.hpp"
-#include "sim/simulate.hpp"
-#include "sim/system.hpp"
-#include "sim/system_threads.hpp"
-#include "sim/testbench.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/system/system.hpp"
+#include "sim/system/system_threads.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {

@@ -7,7 +7,7 @@
 // decide and hold: head done/waiting, allocation, retirement and the retired vertex, the issued
 // ops (block, slot, op, vertex), the left-over flag, the statistics class, the queue (count,
 // head slot) and the issued/done flags of every context. The same pattern as the datapath's
-// check (sim/datapath.hpp): a plain version that the optimized one must equal exactly.
+// check (sim/values/datapath.hpp): a plain version that the optimized one must equal exactly.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -20,10 +20,10 @@
 #include "model/mesh_io.hpp"
 #include "sim/blocks/te.hpp"
 #include "sim/blocks/te_reference.hpp"
-#include "sim/config.hpp"
-#include "sim/host.hpp"
-#include "sim/testbench.hpp"
-#include "sim/unit.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/unit/unit.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {
@@ -83,7 +83,7 @@ std::string difference(const TeCycle& a, const TeCycle& b) {
   return s.str();
 }
 
-// Unit::tick's wiring (sim/unit.cpp) around a TE of type T: TRI FIFO, CPG, control-point
+// Unit::tick's wiring (sim/unit/unit.cpp) around a TE of type T: TRI FIFO, CPG, control-point
 // buffers, VTX FIFO and the same decisions in the same order.
 template <class T>
 class TeBench {

@@ -1,6 +1,7 @@
-// The statistics over time (sim/timeline.hpp, docs/statistics.md "timeline"): the buckets add up
-// to the run's totals exactly, whether the run is shorter than the bucket table or long enough to
-// merge it many times, with and without fast-forward; the bucket rule itself on a bare Timeline.
+// The statistics over time (sim/values/timeline.hpp, docs/statistics.md "timeline"): the buckets
+// add up to the run's totals exactly, whether the run is shorter than the bucket table or long
+// enough to merge it many times, with and without fast-forward; the bucket rule itself on a bare
+// Timeline.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -12,10 +13,10 @@
 
 #include "model/mesh.hpp"
 #include "model/mesh_io.hpp"
-#include "sim/config.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
-#include "sim/timeline.hpp"
+#include "sim/config/config.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/values/timeline.hpp"
 
 namespace tessim::sim {
 namespace {

@@ -1,5 +1,5 @@
-// Cycle-level model of the unit (sim/unit.hpp), its geometry engine (sim/gpe.hpp) and
-// whole-mesh runs (sim/simulate.hpp): docs/microarchitecture.md cycle for cycle, statistics,
+// Cycle-level model of the unit (sim/unit/unit.hpp), its geometry engine (sim/ge/gpe.hpp) and
+// whole-mesh runs (sim/run/simulate.hpp): docs/microarchitecture.md cycle for cycle, statistics,
 // throughput bounds, backpressure, reset, configuration errors. `tessim sim`:
 // tests/cli/sim_cli_test.cpp.
 #include <gtest/gtest.h>
@@ -28,15 +28,15 @@
 #include "model/mesh_io.hpp"
 #include "model/pattern.hpp"
 #include "model/pn.hpp"
-#include "sim/config.hpp"
-#include "sim/cpg.hpp"
-#include "sim/datapath.hpp"
-#include "sim/gpe.hpp"
-#include "sim/host.hpp"
-#include "sim/report.hpp"
-#include "sim/simulate.hpp"
-#include "sim/trace.hpp"
-#include "sim/unit.hpp"
+#include "sim/config/config.hpp"
+#include "sim/ge/gpe.hpp"
+#include "sim/report/report.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/run/trace.hpp"
+#include "sim/unit/unit.hpp"
+#include "sim/values/cpg.hpp"
+#include "sim/values/datapath.hpp"
+#include "sim/values/host.hpp"
 
 namespace tessim::sim {
 namespace {
@@ -101,7 +101,7 @@ std::vector<VertexFx> run_vertices(const Mesh& mesh, const UnitConfig& cfg, SimR
   return out;
 }
 
-// The untimed datapath (sim/datapath.hpp) for one vertex of a triangle's patch.
+// The untimed datapath (sim/values/datapath.hpp) for one vertex of a triangle's patch.
 VertexFx direct_vertex(const TriangleFx& tri, int j, int k, const UnitConfig& cfg) {
   return evaluate_vertex(compute_control_points(tri, cfg.normals, cfg.format), j, k, tri.L, tri.id, cfg.normals,
                          cfg.format);

@@ -1,4 +1,4 @@
-// Values of the unit's parameters (sim/params.hpp) for the tests of the table: JSON
+// Values of the unit's parameters (sim/config/params.hpp) for the tests of the table: JSON
 // (tests/sim/params_test.cpp) and command-line flags (tests/cli/config_cli_test.cpp).
 #pragma once
 
@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/config.hpp"
-#include "sim/cpg.hpp"
-#include "sim/params.hpp"
+#include "sim/config/config.hpp"
+#include "sim/config/params.hpp"
+#include "sim/values/cpg.hpp"
 
 namespace tessim::testing {
 

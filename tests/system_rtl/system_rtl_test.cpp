@@ -30,9 +30,9 @@
 
 #include "cosim/cosim.hpp"
 #include "rtl/verilated/verilated_unit.hpp"
-#include "sim/cpg.hpp"
-#include "sim/int_ops.hpp"
-#include "sim/system.hpp"
+#include "sim/base/int_ops.hpp"
+#include "sim/system/system.hpp"
+#include "sim/values/cpg.hpp"
 
 #include "Vtess_system_m2.h"
 #include "Vtess_system_m2_fixed.h"

@@ -12,8 +12,8 @@
 #include "model/mesh_io.hpp"
 #include "model/tessellate.hpp"
 #include "render/raster.hpp"
-#include "sim/config.hpp"
-#include "sim/simulate.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/simulate.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 4 && argc != 5) {

@@ -10,10 +10,10 @@
 
 #include "model/mesh_io.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
-#include "sim/config.hpp"
-#include "sim/host.hpp"
-#include "sim/simulate.hpp"
-#include "sim/testbench.hpp"
+#include "sim/config/config.hpp"
+#include "sim/run/simulate.hpp"
+#include "sim/run/testbench.hpp"
+#include "sim/values/host.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {
