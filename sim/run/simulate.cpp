@@ -115,28 +115,115 @@ class AcceptedVertices {
   std::optional<ArithmeticCheck> arithmetic_;
 };
 
+// The loop a configuration runs: one unit, a system of units (cfg.units > 1) or the unit without
+// TE of evaluation gpe (validate() admits a system only with evaluation unit).
+enum class Loop { Unit, System, GeEvaluation };
+
+Loop loop_of(const UnitConfig& cfg) {
+  if (cfg.evaluation == Evaluation::Gpe) return Loop::GeEvaluation;
+  return cfg.units > 1 ? Loop::System : Loop::Unit;
+}
+
+// The setup the three loops share, in the order they have always done it: the arguments checked,
+// the result as far as it is known before the first cycle, what the loop cannot do with the hooks
+// refused, the configuration the testbench and the watchdog see, and the run's triangles in stream
+// order. A loop builds its unit, calls started() and returns finish().
+struct RunSetup {
+  RunSetup(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end, const SimHooks& hooks,
+           const MeshPatterns& patterns)
+      : mesh(mesh),
+        cfg(cfg),
+        hooks(hooks),
+        patterns(patterns),
+        loop(loop_of(cfg)),
+        r(start(first, end)),
+        run_cfg(with_ge_cost(cfg, r.ge)),
+        source(mesh, r.scaling, cfg.format, cfg.tess_factor, patterns, with_tags(cfg), first, end),
+        total(source.vertices()) {
+    r.factors = workload_factors(source);
+  }
+
+  // The loop's unit is built: its C goes into the result, and the watchdog allows `waits` times
+  // what that unit's waits can take.
+  Watchdog started(int cpg_cycles, int waits = 1) {
+    r.cpg_cycles = cpg_cycles;
+    return Watchdog(run_cfg, cpg_cycles * waits);
+  }
+
+  // The result, with the run's wall time.
+  SimResult finish() {
+    r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return std::move(r);
+  }
+
+  const Mesh& mesh;
+  const UnitConfig& cfg;
+  const SimHooks& hooks;
+  const MeshPatterns& patterns;
+  const Loop loop;
+  std::chrono::steady_clock::time_point t0;
+  SimResult r;
+  const UnitConfig run_cfg;  // the geometry engine as the run sees it: K plus its shader work per vertex
+  MeshSource source;
+  const std::uint64_t total;  // the vertices the geometry engine accepts over the run
+
+ private:
+  // The mesh's scalar tags go along when the loop's CPG takes them: in evaluation gpe, only a
+  // dedicated CPG does.
+  static bool with_tags(const UnitConfig& cfg) {
+    return cfg.evaluation == Evaluation::Gpe ? cfg.cpg_tags && cfg.cpg_mapping == CpgMapping::Dedicated
+                                             : cfg.cpg_tags != 0;
+  }
+
+  // Everything before the run's triangles; t0 is taken once the arguments have passed.
+  SimResult start(std::uint64_t first, std::uint64_t end) {
+    const std::span<const std::uint8_t> factors = patterns.factors;
+    if (!factors.empty() && factors.size() != mesh.triangle_count())
+      throw std::logic_error("simulate: " + std::to_string(factors.size()) + " factors for " +
+                             std::to_string(mesh.triangle_count()) + " triangles");
+    if (patterns.d3d11 && cfg.format.bary_bits < 16)
+      throw InputError("configuration", "bary_bits",
+                       "the D3D11 pattern's points are 16.16: it needs bary_bits >= 16, not " +
+                           std::to_string(cfg.format.bary_bits));
+    if (first > end || end > mesh.triangle_count())
+      throw std::logic_error("simulate: triangles " + std::to_string(first) + ".." + std::to_string(end) +
+                             " of a mesh of " + std::to_string(mesh.triangle_count()));
+    t0 = std::chrono::steady_clock::now();
+    check_convertible(mesh);
+    SimResult result;
+    result.mesh = mesh.source;
+    result.config = cfg;
+    result.triangles = end - first;
+    result.scaling = host_scaling(mesh);
+    validate(patterns.displace, "displacement");
+    result.displace = patterns.displace;
+    result.ge = ge_vertex_cost(cfg, patterns.displace.kind);
+    if (loop == Loop::GeEvaluation && !hooks.observers.empty())
+      throw InputError("configuration", "evaluation", "gpe has no TE to trace or schedule (--trace, --schedule)");
+    if (loop == Loop::GeEvaluation && (hooks.measure_errors || hooks.on_vertex))
+      throw InputError("configuration", "evaluation",
+                       "gpe evaluates in float on the geometry engine: --errors measures the unit's fixed-point output");
+    if (loop == Loop::System && !hooks.observers.empty())
+      throw InputError("command line", "--units", "a trace or schedule follows one unit: not a system of several");
+    return result;
+  }
+};
+
 // evaluation gpe: the DPG's points evaluated by the geometry engine (sim/ge/ge_evaluation.hpp),
-// cycle by cycle. `r` comes with what simulate_range set up.
-SimResult simulate_ge_evaluation(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
-                                 const SimHooks& hooks, const MeshPatterns& patterns, SimResult r,
-                                 std::chrono::steady_clock::time_point t0) {
-  if (!hooks.observers.empty())
-    throw InputError("configuration", "evaluation", "gpe has no TE to trace or schedule (--trace, --schedule)");
-  if (hooks.measure_errors || hooks.on_vertex)
-    throw InputError("configuration", "evaluation",
-                     "gpe evaluates in float on the geometry engine: --errors measures the unit's fixed-point output");
-  const UnitConfig run_cfg = with_ge_cost(cfg, r.ge);
+// cycle by cycle.
+SimResult simulate_ge_evaluation(RunSetup& setup) {
+  const Mesh& mesh = setup.mesh;
+  const UnitConfig& cfg = setup.cfg;
+  const SimHooks& hooks = setup.hooks;
+  const MeshPatterns& patterns = setup.patterns;
+  SimResult& r = setup.r;
   GeEvaluationUnit unit(cfg);
-  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, patterns,
-                          cfg.cpg_tags && cfg.cpg_mapping == CpgMapping::Dedicated, first, end);
-  BasicTestbench<MeshSource> tb(source, run_cfg);
-  r.cpg_cycles = unit.cpg_cycles();
-  r.factors = workload_factors(source);
-  const std::uint64_t total = source.vertices();
+  BasicTestbench<MeshSource> tb(setup.source, setup.run_cfg);
+  Watchdog watchdog = setup.started(unit.cpg_cycles());
+  const std::uint64_t total = setup.total;
   std::optional<PatchAssembly> patches;
   const std::function<void(const PatchOut&)> on_patch = AcceptedVertices::patch_sink(hooks, patterns);
-  if (on_patch) patches.emplace(source, r.scaling, cfg.format, cfg.tess_factor, on_patch);
-  Watchdog watchdog(run_cfg, unit.cpg_cycles());
+  if (on_patch) patches.emplace(setup.source, r.scaling, cfg.format, cfg.tess_factor, on_patch);
   // The host's control points (cpg_mapping host): the float reference's, once per patch.
   PnPatch host_patch;
   std::uint32_t host_patch_id = UINT32_MAX;
@@ -178,8 +265,7 @@ SimResult simulate_ge_evaluation(const Mesh& mesh, const UnitConfig& cfg, std::u
   r.unit = unit.stats();
   r.gpe = tb.gpe().stats();
   r.cpg_tag_cycles = unit.cpg_tag_cycles();
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+  return setup.finish();
 }
 
 // The patches of an unordered system, held until every earlier patch has been handed on.
@@ -221,22 +307,17 @@ class StreamOrder {
   std::unordered_map<std::uint32_t, std::vector<VertexFx>> held_;
 };
 
-// cfg.units > 1: the system of sim/system/system.hpp, cycle by cycle. `r` comes with what
-// simulate_range set up.
-SimResult simulate_system(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
-                          const SimHooks& hooks, const MeshPatterns& patterns, SimResult r,
-                          std::chrono::steady_clock::time_point t0) {
-  if (!hooks.observers.empty())
-    throw InputError("command line", "--units", "a trace or schedule follows one unit: not a system of several");
-  const UnitConfig run_cfg = with_ge_cost(cfg, r.ge);
+// cfg.units > 1: the system of sim/system/system.hpp, cycle by cycle.
+SimResult simulate_system(RunSetup& setup) {
+  const UnitConfig& cfg = setup.cfg;
+  const SimHooks& hooks = setup.hooks;
+  SimResult& r = setup.r;
+  MeshSource& source = setup.source;  // popped here: no testbench stands between it and the system
   UnitSystem system(cfg, r.ge.total());
-  MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, patterns, cfg.cpg_tags, first, end);
-  r.cpg_cycles = system.unit(0).cpg_cycles();
-  r.factors = workload_factors(source);
-  const std::uint64_t total = source.vertices();
-  AcceptedVertices accepted_vertices(mesh, source, cfg, hooks, patterns, r.scaling);
   // A system's vertex can wait behind another unit's patches: the watchdog allows M times a unit's.
-  Watchdog watchdog(run_cfg, system.unit(0).cpg_cycles() * cfg.units);
+  Watchdog watchdog = setup.started(system.unit(0).cpg_cycles(), cfg.units);
+  const std::uint64_t total = setup.total;
+  AcceptedVertices accepted_vertices(setup.mesh, source, cfg, hooks, setup.patterns, r.scaling);
   std::uint64_t accepted = 0, cycle = 0;
   // Unordered reassembly: what the ports took is put back in stream order for everything after
   // the run (order check, hooks, output file). The simulator's buffer, not the hardware's.
@@ -285,56 +366,23 @@ SimResult simulate_system(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t
   }
   r.system = std::move(sys);
   accepted_vertices.finish(r);
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+  return setup.finish();
 }
 
-}  // namespace
-
-SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks, MeshPatterns patterns) {
-  return simulate_range(mesh, cfg, 0, mesh.triangle_count(), hooks, patterns);
-}
-
-SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
-                         const SimHooks& hooks, MeshPatterns patterns) {
-  const std::span<const std::uint8_t> factors = patterns.factors;
-  if (!factors.empty() && factors.size() != mesh.triangle_count())
-    throw std::logic_error("simulate: " + std::to_string(factors.size()) + " factors for " +
-                           std::to_string(mesh.triangle_count()) + " triangles");
-  if (patterns.d3d11 && cfg.format.bary_bits < 16)
-    throw InputError("configuration", "bary_bits",
-                     "the D3D11 pattern's points are 16.16: it needs bary_bits >= 16, not " +
-                         std::to_string(cfg.format.bary_bits));
-  if (first > end || end > mesh.triangle_count())
-    throw std::logic_error("simulate: triangles " + std::to_string(first) + ".." + std::to_string(end) +
-                           " of a mesh of " + std::to_string(mesh.triangle_count()));
-  const auto t0 = std::chrono::steady_clock::now();
-  check_convertible(mesh);
-  SimResult r;
-  r.mesh = mesh.source;
-  r.config = cfg;
-  r.triangles = end - first;
-  r.scaling = host_scaling(mesh);
-  validate(patterns.displace, "displacement");
-  r.displace = patterns.displace;
-  r.ge = ge_vertex_cost(cfg, patterns.displace.kind);
-  // The geometry engine as the run sees it: K plus the shader work it does per vertex.
-  if (cfg.evaluation == Evaluation::Gpe) return simulate_ge_evaluation(mesh, cfg, first, end, hooks, patterns, r, t0);
-  if (cfg.units > 1) return simulate_system(mesh, cfg, first, end, hooks, patterns, r, t0);
-  const UnitConfig run_cfg = with_ge_cost(cfg, r.ge);
-
+// One unit, cycle by cycle: the observers, fast-forward, the limit line and the timeline.
+SimResult simulate_unit(RunSetup& setup) {
+  const UnitConfig& cfg = setup.cfg;
+  const SimHooks& hooks = setup.hooks;
+  SimResult& r = setup.r;
   Unit unit(cfg);
-  const MeshSource source(mesh, r.scaling, cfg.format, cfg.tess_factor, patterns, cfg.cpg_tags, first, end);
-  BasicTestbench<MeshSource> tb(source, run_cfg);
-  r.cpg_cycles = unit.cpg_cycles();
-  r.factors = workload_factors(source);
-  const std::uint64_t total = source.vertices();
+  BasicTestbench<MeshSource> tb(setup.source, setup.run_cfg);
+  Watchdog watchdog = setup.started(unit.cpg_cycles());
+  const std::uint64_t total = setup.total;
 
   // The run's concerns besides stepping the unit, each fed what it watches.
-  AcceptedVertices accepted_vertices(mesh, source, cfg, hooks, patterns, r.scaling);
+  AcceptedVertices accepted_vertices(setup.mesh, setup.source, cfg, hooks, setup.patterns, r.scaling);
   LateIntervals late;
   TimelineRecorder timeline(r.timeline);
-  Watchdog watchdog(run_cfg, unit.cpg_cycles());
   std::vector<CycleObserver*> observers = hooks.observers;
 
   std::uint64_t accepted = 0;
@@ -381,8 +429,24 @@ SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t 
   r.te_late = late.te_late();
   accepted_vertices.finish(r);
   r.cpg_tag_cycles = unit.cpg_tag_cycles();
-  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+  return setup.finish();
+}
+
+}  // namespace
+
+SimResult simulate(const Mesh& mesh, const UnitConfig& cfg, const SimHooks& hooks, MeshPatterns patterns) {
+  return simulate_range(mesh, cfg, 0, mesh.triangle_count(), hooks, patterns);
+}
+
+SimResult simulate_range(const Mesh& mesh, const UnitConfig& cfg, std::uint64_t first, std::uint64_t end,
+                         const SimHooks& hooks, MeshPatterns patterns) {
+  RunSetup setup(mesh, cfg, first, end, hooks, patterns);
+  switch (setup.loop) {
+    case Loop::GeEvaluation: return simulate_ge_evaluation(setup);
+    case Loop::System: return simulate_system(setup);
+    case Loop::Unit: break;
+  }
+  return simulate_unit(setup);
 }
 
 }  // namespace tessim::sim
