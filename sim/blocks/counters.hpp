@@ -13,13 +13,28 @@
 
 namespace tessim::sim {
 
-// Per cycle it only increments a few array entries (this runs every simulated cycle); the
-// per-block figures are derived when stats() is read.
 // The run counters (registry block Run) one cycle increments besides `cycles`: one bit per
 // RunCounter, set by the block that decides the event (Unit::tick).
 using RunEvents = std::uint32_t;
 static_assert(row_count(CounterBlock::Run) <= 32, "RunEvents has a bit per run counter");
 constexpr RunEvents run_event(RunCounter c) { return RunEvents{1} << static_cast<unsigned>(c); }
+
+// A cycle's handshakes at the unit's boundary and the run counters they increment: a triangle
+// pushed into the TRI FIFO (triangles_in) or offered and refused (tri_stalls), a vertex popped
+// from the VTX FIFO (vertices_out). One definition for sim::Unit and the unit without TE of
+// evaluation gpe (GeEvaluationUnit), whose boundaries are the same.
+struct BoundaryCycle {
+  bool tri_push = false;
+  bool vtx_pop = false;
+  RunEvents events = 0;
+};
+constexpr BoundaryCycle boundary_cycle(const UnitInputs& in, bool tri_fifo_full, bool vtx_fifo_empty) {
+  const bool tri_push = in.tri_valid && !tri_fifo_full;
+  const bool vtx_pop = in.vtx_ready && !vtx_fifo_empty;
+  return {tri_push, vtx_pop,
+          (tri_push ? run_event(RunCounter::TrianglesIn) : 0) | (vtx_pop ? run_event(RunCounter::VerticesOut) : 0) |
+              (in.tri_valid && !tri_push ? run_event(RunCounter::TriStalls) : 0)};
+}
 
 // Per cycle it only increments a few array entries (this runs every simulated cycle); the
 // per-block figures are derived when stats() is read.

@@ -46,8 +46,8 @@ void GeEvaluationUnit::reset() {
 
 void GeEvaluationUnit::tick(const UnitInputs& in) {
   // ---- Decisions from the registered state and the inputs.
-  const bool tri_push = in.tri_valid && !tri_fifo_.full();
-  const bool vtx_pop = in.vtx_ready && !vtx_fifo_.empty();
+  const BoundaryCycle boundary = boundary_cycle(in, tri_fifo_.full(), vtx_fifo_.empty());
+  const bool tri_push = boundary.tri_push, vtx_pop = boundary.vtx_pop;
   const bool point_available = buffers_.rd_full();
   const bool hand_out = point_available && !vtx_fifo_.full();
   const CpgArray::Actions cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
@@ -55,9 +55,7 @@ void GeEvaluationUnit::tick(const UnitInputs& in) {
                             : point_available ? TeClass::BlockedByGpe
                             : cpg_.busy() || !tri_fifo_.empty() ? TeClass::StarvedByCpg
                                                                 : TeClass::Idle;
-  counters_.count(0, dpg_class, cpg_.classify(cpg),
-                  (tri_push ? run_event(RunCounter::TrianglesIn) : 0) | (vtx_pop ? run_event(RunCounter::VerticesOut) : 0) |
-                      (in.tri_valid && !tri_push ? run_event(RunCounter::TriStalls) : 0));
+  counters_.count(0, dpg_class, cpg_.classify(cpg), boundary.events);
 
   // ---- The clock edge. The GE's acceptance of a patch's last point frees its buffer.
   if (vtx_pop && vtx_fifo_.front().point.last) buffers_.release(vtx_fifo_.front().buffer);

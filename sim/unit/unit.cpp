@@ -87,9 +87,9 @@ void Unit::inject(const TriangleFx& tri) {
 
 void Unit::tick(const UnitInputs& in) {
   // ---- Every decision of the cycle, from the registered state and the inputs.
-  const bool tri_push = in.tri_valid && !tri_fifo_.full();
+  const BoundaryCycle boundary = boundary_cycle(in, tri_fifo_.full(), vtx_fifo_.empty());
+  const bool tri_push = boundary.tri_push, vtx_pop = boundary.vtx_pop;
   if (tri_push) check_factors(in.tri);
-  const bool vtx_pop = in.vtx_ready && !vtx_fifo_.empty();
   const bool head_done = te_.head_done();
   const bool retire = head_done && !vtx_fifo_.full();
   const bool point_available = buffers_.rd_full();
@@ -103,9 +103,7 @@ void Unit::tick(const UnitInputs& in) {
                                   cpg_.busy() || !tri_fifo_.empty());
   const CpgClass cpg_class = cpg_.classify(cpg);
   act_.cycle = counters_.cycles();
-  counters_.count(issued, te, cpg_class,
-                  (tri_push ? run_event(RunCounter::TrianglesIn) : 0) | (vtx_pop ? run_event(RunCounter::VerticesOut) : 0) |
-                      (in.tri_valid && !tri_push ? run_event(RunCounter::TriStalls) : 0));
+  counters_.count(issued, te, cpg_class, boundary.events);
   act_.ops_issued = issued;
   act_.te = te;
   act_.cpg = cpg_class;
@@ -144,8 +142,9 @@ std::uint64_t Unit::skip(std::uint64_t n, const UnitInputs& in, std::uint64_t is
   const bool upstream_busy = cpg_.busy() || !tri_fifo_.empty();
   const CpgArray::Actions cpg = cpg_.decide(!tri_fifo_.empty(), buffers_.wr_empty(), in.cpg_step);
   const CpgClass cpg_class = cpg_.classify(cpg);
-  // A triangle offered in a quiet stretch is refused in each of its cycles (the TRI FIFO is full).
-  const RunEvents events = in.tri_valid ? run_event(RunCounter::TriStalls) : 0;
+  // The boundary pushes and pops nothing in a quiet stretch: a triangle offered is refused in each
+  // of its cycles (the TRI FIFO is full).
+  const RunEvents events = boundary_cycle(in, tri_fifo_.full(), vtx_fifo_.empty()).events;
   int issued = 0;
   TeClass te = TeClass::Idle;
   if (te_.quiet()) {
