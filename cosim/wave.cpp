@@ -13,6 +13,7 @@
 
 #include "model/base/error.hpp"
 #include "model/base/output_file.hpp"
+#include "sim/base/counter_registry.hpp"
 #include "sim/config/ports.hpp"
 #include "sim/values/cpg.hpp"
 
@@ -143,7 +144,9 @@ static std::string gtkw_text(const std::filesystem::path& dump, const sim::Hardw
   port("clk_i");
   port("rst_ni");
   port("mode_i");
-  port("perf_cycles_o");
+  // The cycle counter, one of perf_ctr_o's (tess_pkg::CtrCycles).
+  dec(unit + "g_ctr[" + std::to_string(sim::rtl_counter_index(sim::row_of_rtl("CtrCycles"))) + "].ctr_q",
+      sim::pkg::kCounterBits);
   group("triangles in");
   port("tri_valid_i");
   port("tri_ready_o");

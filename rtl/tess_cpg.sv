@@ -29,9 +29,7 @@ module tess_cpg #(
   parameter int unsigned AlphaBits     = tess_pkg::AlphaBits,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
   localparam int unsigned AlphaW = AlphaBits + 1,
-  localparam int unsigned TriW   = 18 * W + tess_pkg::DescBits + tess_pkg::IdBits
-                                 + ((CpgTags != 0) ? 18 * W : 0)
-                                 + ((AlphaBits != 0) ? 3 * AlphaW : 0)
+  localparam int unsigned TriW   = tess_pkg::tri_w(W, CpgTags, AlphaBits)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,

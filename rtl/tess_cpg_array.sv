@@ -21,9 +21,7 @@ module tess_cpg_array #(
   parameter int unsigned AlphaBits     = tess_pkg::AlphaBits,
   parameter int unsigned CpgCopies     = tess_pkg::CpgCopies,
   localparam int unsigned W      = 1 + CoordIntBits + CoordFracBits,
-  localparam int unsigned TriW   = 18 * W + tess_pkg::DescBits + tess_pkg::IdBits
-                                 + ((CpgTags != 0) ? 18 * W : 0)
-                                 + ((AlphaBits != 0) ? 3 * (AlphaBits + 1) : 0)
+  localparam int unsigned TriW   = tess_pkg::tri_w(W, CpgTags, AlphaBits)
 ) (
   input  logic                              clk_i,
   input  logic                              rst_ni,

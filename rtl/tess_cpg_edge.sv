@@ -48,6 +48,9 @@
 //   s8 tangent near b
 // Every value is exact until the one rounding the C++ reference (sim/cpg.cpp) applies, so the
 // results are bit-identical to compute_control_points whatever DigitBits and ProductReg are.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_cpg_edge #(
   parameter int unsigned CoordIntBits  = tess_pkg::CoordIntBits,
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
@@ -506,5 +509,12 @@ module tess_cpg_edge #(
     if (st_m && (m_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
     if (use_b111 && (b111_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
   end
+
+  // The coordinate formats and digit widths sim::UnitConfig accepts (tess_unit checks them too;
+  // a lane instantiated on its own is held to them as well).
+  `TESS_ASSERT_PARAM(CoordWidthRange_A, CoordIntBits >= 1 && CoordFracBits >= 8 && 1 + CoordIntBits + CoordFracBits <= 32)
+  `TESS_ASSERT_PARAM(DigitBitsRange_A, DigitBits >= 1 && DigitBits <= 1 + CoordIntBits + CoordFracBits)
+  `TESS_ASSERT_PARAM(ProductRegRange_A, ProductReg <= 1)
+  `TESS_ASSERT_PARAM(AlphaBitsRange_A, AlphaBits <= 16)
 
 endmodule

@@ -16,6 +16,9 @@
 //                  Π = -n.(d - Pj); b = sat(d + round(Π m))
 // Every value is exact until the one rounding the C++ reference (sim/cpg.cpp,
 // compute_control_points) applies, so the results are bit-identical to it.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_cpg_tag #(
   parameter int unsigned CoordIntBits  = tess_pkg::CoordIntBits,
   parameter int unsigned CoordFracBits = tess_pkg::CoordFracBits,
@@ -247,5 +250,8 @@ module tess_cpg_tag #(
     if (div_last_i && (div_sat != '0)) flags_o |= tess_pkg::FlagSaturated;
     if (div_last_i && (div_dbz != '0)) flags_o |= tess_pkg::FlagDivByZero;
   end
+
+  `TESS_ASSERT_PARAM(CoordWidthRange_A, CoordIntBits >= 1 && CoordFracBits >= 8 && 1 + CoordIntBits + CoordFracBits <= 32)
+  `TESS_ASSERT_PARAM(DigitBitsRange_A, DigitBits >= 1 && DigitBits <= 1 + CoordIntBits + CoordFracBits)
 
 endmodule

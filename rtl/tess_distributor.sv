@@ -25,8 +25,8 @@ module tess_distributor #(
   parameter int unsigned RuntimeConfig = 0,
   // Patches a unit can hold at once (TRI FIFO, CPG copies, buffers, VTX FIFO, one more): bounds
   // the pending counters.
-  parameter int unsigned UnitPatches   = tess_pkg::TriFifoDepth + tess_pkg::CpgCopies + tess_pkg::CpBuffers +
-                                         tess_pkg::VtxFifoDepth + 1,
+  parameter int unsigned UnitPatches   = tess_pkg::unit_patches(tess_pkg::TriFifoDepth, tess_pkg::CpgCopies,
+                                                                tess_pkg::CpBuffers, tess_pkg::VtxFifoDepth),
   localparam int unsigned UW     = (Units > 1) ? $clog2(Units) : 1,
   localparam int unsigned PatW   = $clog2(UnitPatches + 1) + 1,
   localparam int unsigned VtxCW  = PatW + tess_pkg::IndexBits,

@@ -9,6 +9,9 @@
 // remaining steps compute. Otherwise rem < den throughout and each of the DigitBits sub-steps of
 // a cycle shifts one dividend bit into rem and subtracts den where it fits. Quotient bits above
 // QuotW are real quotient bits: the saturation test sees the whole QW-bit quotient.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_div #(
   parameter int unsigned DenW      = 50,  // divisor bits (unsigned)
   parameter int unsigned QuotW     = 24,  // quotient bits = signed result width
@@ -105,5 +108,8 @@ module tess_div #(
       end
     end
   end
+
+  // r quotient bits a cycle, at least one, at most the quotient.
+  `TESS_ASSERT_PARAM(DigitBitsRange_A, DigitBits >= 1 && DigitBits <= QuotW)
 
 endmodule

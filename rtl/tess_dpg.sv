@@ -19,6 +19,9 @@
 // the patch, stepped from the point before); an inner ring's offset from the outer edges (2/3 t_r, and half of
 // it along the edge) is computed once per ring, when the walk enters it. j and k give the ring
 // and the edge (3: the centre). B >= 16: the 16.16 points are exact in B bits.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_dpg #(
   parameter int unsigned BaryBits = tess_pkg::BaryBits,
   localparam int unsigned LBits   = tess_pkg::FactorBits
@@ -430,5 +433,10 @@ module tess_dpg #(
   logic unused_ring;
   assign unused_ring = ^{ring_scaled[15:0], next_ring_blend_q[BlW-1:33], next_ring_blend_q[15:0], blend_d[BlW-1:33], blend_d[15:0], mblend_d[BlW-1:33], mblend_d[15:0],
                         next_outer[EW-1-7:7], next_outer[0]};
+
+  // The consume strobe and the last-point flag drive the TE's allocation: never X out of reset.
+  `TESS_ASSERT_KNOWN(ConsumeKnown_A, consume_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(LastKnown_A, last_o, clk_i, !rst_ni)
+  `TESS_ASSERT_PARAM(BaryBitsRange_A, BaryBits >= 7 && BaryBits <= 20)
 
 endmodule

@@ -72,4 +72,10 @@ module tess_fifo #(
 
   `TESS_ASSERT(PushNotFull_A, !(push_i && full_o), clk_i, !rst_ni)
 
+  // Handshakes and the fill level are never X out of reset (4-state simulation: x_check_test).
+  `TESS_ASSERT_KNOWN(PushKnown_A, push_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(PopKnown_A, pop_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(CountKnown_A, count_q, clk_i, !rst_ni)
+  `TESS_ASSERT_PARAM(DepthRange_A, Depth >= 1)
+
 endmodule

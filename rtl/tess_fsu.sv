@@ -10,6 +10,9 @@
 // point count) is registered from the records' shapes in two steps, complete after them, and the
 // CPG's buffer write stores the setup with the nets, so the DPG walks a D3D11 patch from its
 // first cycle at one point per cycle. Every stage fits the depth budget (docs/rtl.md).
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_fsu (
   input  logic                           clk_i,
   input  logic                           rst_ni,
@@ -151,5 +154,9 @@ module tess_fsu (
 
   logic unused_l;  // the uniform pattern's factor goes past the FSU
   assign unused_l = ^desc_i[Pat-1:0];
+
+  // The CPG's start strobe and the busy flag it waits on are never X out of reset.
+  `TESS_ASSERT_KNOWN(StartKnown_A, start_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(BusyKnown_A, busy_o, clk_i, !rst_ni)
 
 endmodule

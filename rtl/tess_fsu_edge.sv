@@ -10,6 +10,9 @@
 // and each fits the depth budget (docs/rtl.md): the edge's shape and its two reciprocals come
 // from the factor of this cycle, the weights' 17 x 17-bit products from the reciprocals
 // registered in the cycle before, their sum a cycle later.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_fsu_edge (
   input  logic                         clk_i,
   input  logic [tess_pkg::FixBits-1:0] factor_i,      // 16.16, 1..64
@@ -103,5 +106,8 @@ module tess_fsu_edge (
   // takes the cleared value's low five bits (floor(H) <= 32).
   logic unused_bits;
   assign unused_bits = ^{ceil_half[FW-1], ceil_half[15:0], wo_msb[5]};
+
+  // A D3D11 factor is at most 64.0 in 16.16: its ceiling's points fit points_o.
+  `TESS_ASSERT_PARAM(FactorFits_A, tess_pkg::FixBits >= 23 && tess_pkg::MaxFactor + 1 < (1 << 7))
 
 endmodule

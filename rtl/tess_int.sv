@@ -9,6 +9,9 @@
 // in different cycles: docs/rtl.md, Depth budget); with Latency >= 3 the second sits between
 // the multipliers and the adder; any further registers delay the result. The TE gives the block
 // one register fewer than its IntLatency when it registers the slots' choices itself.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_int #(
   parameter int unsigned CoordWidth = 24,               // W
   parameter int unsigned BaryBits   = tess_pkg::BaryBits,  // B
@@ -204,5 +207,10 @@ module tess_int #(
     assign tag_o   = stage_tag;
     assign res_o   = res;
   end
+
+  // The issue handshake: valid in, valid out never X out of reset; Λ as the TE schedules it.
+  `TESS_ASSERT_KNOWN(ValidInKnown_A, valid_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(ValidOutKnown_A, valid_o, clk_i, !rst_ni)
+  `TESS_ASSERT_PARAM(LatencyRange_A, Latency >= 1 && Latency <= 8)
 
 endmodule

@@ -4,6 +4,9 @@
 // The radicand is taken zero-extended to 2*RW bits (RW = Steps * DigitBits >= RootW), which
 // only adds leading zero root bits. Each sub-step brings down the next two radicand bits and
 // subtracts the trial 4r + 1 where it fits; the remainder stays <= 2r, so it needs RW + 1 bits.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_isqrt #(
   parameter int unsigned RootW     = 24,
   parameter int unsigned DigitBits = 1,
@@ -64,5 +67,8 @@ module tess_isqrt #(
     logic unused_root_pad;  // leading root bits of the zero-extended radicand: always 0
     assign unused_root_pad = ^root_q[RW-1:RootW];
   end
+
+  // r root bits a cycle, at least one, at most the root.
+  `TESS_ASSERT_PARAM(DigitBitsRange_A, DigitBits >= 1 && DigitBits <= RootW)
 
 endmodule

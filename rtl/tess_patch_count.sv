@@ -4,6 +4,9 @@
 // of an even pattern, n the points of the inner edge (tess_fsu's per-patch part, with the edge
 // shapes of tess_fsu_edge's first stage: the same arithmetic, not registered). The distributor of
 // a system of units (tess_distributor) needs it in the cycle it takes the triangle.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_patch_count (
   input  logic [tess_pkg::FactorBits-1:0]  l_i,
   input  logic [tess_pkg::PatternBits-1:0] pattern_i,
@@ -58,5 +61,8 @@ module tess_patch_count (
   assign uniform_product = (14'(l_i) + 14'd1) * (14'(l_i) + 14'd2);
 
   assign count_o = (pattern_i == tess_pkg::PatUniform) ? CW'(uniform_product >> 1) : d3d11_count;
+
+  // The largest pattern, 3169 points (fractional_even at 64), fits count_o.
+  `TESS_ASSERT_PARAM(CountFits_A, (1 << tess_pkg::IndexBits) > 3169)
 
 endmodule

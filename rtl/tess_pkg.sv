@@ -54,6 +54,53 @@ package tess_pkg;
   // What the control-point buffer keeps of a patch besides its nets: {setup, pattern, L}.
   localparam int unsigned PatchBits  = SetupBits + PatternBits + FactorBits;
 
+  // ---- widths derived from the parameters, defined here only ----
+  // Constant functions (Yosys 0.23 takes them written as an assignment to the function's name,
+  // not `return`). w is the coordinate width W = 1 + CoordIntBits + CoordFracBits.
+  // A TRI FIFO word: {alpha 3 (A + 1) (with AlphaBits), tags 18W (with CpgTags), id, descriptor, N 9W, P 9W}.
+  function automatic int unsigned tri_w(int unsigned w, int unsigned cpg_tags, int unsigned alpha_bits);
+    tri_w = 18 * w + DescBits + IdBits + ((cpg_tags != 0) ? 18 * w : 0)
+            + ((alpha_bits != 0) ? 3 * (alpha_bits + 1) : 0);
+  endfunction
+  // A VTX FIFO word: {flags, last, id, index, l, k, j, v, u, nrm 3W, pos 3W}.
+  function automatic int unsigned vtx_w(int unsigned w, int unsigned bary_bits);
+    vtx_w = 6 * w + 2 * (bary_bits + 1) + 3 * FactorBits + IndexBits + IdBits + 1 + FlagBits;
+  endfunction
+  // Patches a unit holds at once (TRI FIFO, CPG copies, buffers, VTX FIFO, one more): bounds the
+  // distributor's pending counters and the reassembly buffer's order queue.
+  function automatic int unsigned unit_patches(int unsigned tri_fifo_depth, int unsigned cpg_copies,
+                                                int unsigned cp_buffers, int unsigned vtx_fifo_depth);
+    unit_patches = tri_fifo_depth + cpg_copies + cp_buffers + vtx_fifo_depth + 1;
+  endfunction
+
+  // ---- performance counters (§10) ----
+  // tess_unit's perf_ctr_o carries counter k at [k CounterBits +: CounterBits], k one of these;
+  // INT block i's busy cycles at CtrIntBusy + i (so they come last). The order is the counter
+  // registry's (sim/blocks/counter_registry.hpp: its rows with an RTL counter, per-INT-block
+  // rows last); tests/sim/counter_registry_test.cpp checks that the two lists agree.
+  typedef enum int unsigned {
+    CtrCycles,              // every cycle out of reset
+    CtrTriIn,               // triangles accepted at the input
+    CtrVtxOut,              // vertices accepted by the GPE
+    CtrTriStalls,           // triangles refused (input back-pressure)
+    CtrTeContextLimited,
+    CtrTeIntLimited,
+    CtrTeBusy,
+    CtrTeBlockedByGpe,
+    CtrTeStarvedByCpg,
+    CtrTeIdle,
+    CtrTePipeline,
+    CtrCpgBusy,
+    CtrCpgBlocked,
+    CtrCpgIdle,
+    CtrIntBusy              // first of IntBlocks
+  } ctr_e;
+  // Yosys 0.23 reads an enumerator inside a constant function only through a localparam.
+  localparam int unsigned NumScalarCtrs = CtrIntBusy;
+  function automatic int unsigned num_ctrs(int unsigned int_blocks);
+    num_ctrs = NumScalarCtrs + int_blocks;
+  endfunction
+
   // ---- normal modes (sim/cpg.hpp mode_code) ----
   localparam logic [1:0] ModeQuadratic = 2'd0;
   localparam logic [1:0] ModeReflect   = 2'd1;

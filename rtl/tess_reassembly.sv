@@ -35,11 +35,10 @@ module tess_reassembly #(
   parameter int unsigned GePorts       = 1,
   parameter int unsigned ReorderSlots  = 4,
   parameter int unsigned RuntimeConfig = 0,
-  parameter int unsigned UnitPatches   = tess_pkg::TriFifoDepth + tess_pkg::CpgCopies + tess_pkg::CpBuffers +
-                                         tess_pkg::VtxFifoDepth + 1,
-  parameter int unsigned VtxW          = 6 * (1 + tess_pkg::CoordIntBits + tess_pkg::CoordFracBits) +
-                                         2 * (tess_pkg::BaryBits + 1) + 3 * tess_pkg::FactorBits +
-                                         tess_pkg::IndexBits + tess_pkg::IdBits + 1 + tess_pkg::FlagBits,
+  parameter int unsigned UnitPatches   = tess_pkg::unit_patches(tess_pkg::TriFifoDepth, tess_pkg::CpgCopies,
+                                                                tess_pkg::CpBuffers, tess_pkg::VtxFifoDepth),
+  parameter int unsigned VtxW          = tess_pkg::vtx_w(1 + tess_pkg::CoordIntBits + tess_pkg::CoordFracBits,
+                                                         tess_pkg::BaryBits),
   parameter int unsigned IdLsb         = VtxW - tess_pkg::FlagBits - 1 - tess_pkg::IdBits,
   parameter int unsigned LastBit       = VtxW - tess_pkg::FlagBits - 1,
   localparam int unsigned UW  = (Units > 1) ? $clog2(Units) : 1,

@@ -17,6 +17,9 @@
 // policy, the batch and the slots in use from cfg_*_i (static during a run; the Verilated test
 // builds cover every policy, batch and R <= ReorderSlots with one model each); 0 from the
 // parameters, the inputs unused.
+`ifndef TESS_ASSERT_SVH
+`include "tess_assert.svh"
+`endif
 module tess_system #(
   parameter int unsigned Units         = 2,   // M
   parameter int unsigned GePorts       = 1,   // P
@@ -87,8 +90,9 @@ module tess_system #(
   localparam int unsigned IxW    = tess_pkg::IndexBits;
   localparam int unsigned FlagW  = tess_pkg::FlagBits;
   localparam int unsigned CtrW   = tess_pkg::CounterBits;
-  localparam int unsigned VtxW   = 6 * W + 2 * BW + 3 * FacW + IxW + IdW + 1 + FlagW;
-  localparam int unsigned UnitPatches = TriFifoDepth + CpgCopies + CpBuffers + VtxFifoDepth + 1;
+  localparam int unsigned VtxW   = tess_pkg::vtx_w(W, BaryBits);
+  localparam int unsigned UnitPatches = tess_pkg::unit_patches(TriFifoDepth, CpgCopies, CpBuffers, VtxFifoDepth);
+  localparam int unsigned NumCtr = tess_pkg::num_ctrs(IntBlocks);
 
   // ------------------------------------------------------------------ distributor
   logic [Units-1:0] unit_tri_ready, unit_tri_valid, admit, admit_last, unit_vtx_valid;
@@ -130,9 +134,7 @@ module tess_system #(
     logic [IdW-1:0]  id;
     logic            last;
     logic [FlagW-1:0] flags;
-    logic [CtrW-1:0] c_cycles, c_tri_in, c_vtx_out, c_tri_stalls, c_ctx, c_int, c_busy, c_blocked, c_starved,
-                     c_idle, c_pipeline, c_cpg_busy, c_cpg_blocked, c_cpg_idle;
-    logic [IntBlocks*CtrW-1:0] c_int_busy;
+    logic [NumCtr*CtrW-1:0] perf;  // the unit's counters, indexed by tess_pkg::ctr_e
     tess_unit #(
       .CoordIntBits (CoordIntBits),
       .CoordFracBits(CoordFracBits),
@@ -177,29 +179,14 @@ module tess_system #(
       .vtx_id_o                 (id),
       .vtx_last_o               (last),
       .vtx_flags_o              (flags),
-      .perf_cycles_o            (c_cycles),
-      .perf_tri_in_o            (c_tri_in),
-      .perf_vtx_out_o           (c_vtx_out),
-      .perf_tri_stalls_o        (c_tri_stalls),
-      .perf_int_busy_o          (c_int_busy),
-      .perf_te_context_limited_o(c_ctx),
-      .perf_te_int_limited_o    (c_int),
-      .perf_te_busy_o           (c_busy),
-      .perf_te_blocked_by_gpe_o (c_blocked),
-      .perf_te_starved_by_cpg_o (c_starved),
-      .perf_te_idle_o           (c_idle),
-      .perf_te_pipeline_o       (c_pipeline),
-      .perf_cpg_busy_o          (c_cpg_busy),
-      .perf_cpg_blocked_o       (c_cpg_blocked),
-      .perf_cpg_idle_o          (c_cpg_idle)
+      .perf_ctr_o               (perf)
     );
     // The vertex word of tess_unit's VTX FIFO: {flags, last, id, index, l, k, j, v, u, nrm, pos}.
     assign unit_vtx[u*VtxW +: VtxW] = {flags, last, id, index, l, k, j, bv, bu, nrm, pos};
     assign admit_last[u] = last;
     // The units' own counters are not part of the system's interface.
     logic unused_counters;
-    assign unused_counters = ^{c_cycles, c_tri_in, c_vtx_out, c_tri_stalls, c_ctx, c_int, c_busy, c_blocked,
-                               c_starved, c_idle, c_pipeline, c_cpg_busy, c_cpg_blocked, c_cpg_idle, c_int_busy};
+    assign unused_counters = ^perf;
   end
 
   // ------------------------------------------------------------------ reassembly buffer
@@ -233,5 +220,21 @@ module tess_system #(
             ge_l_o[p*FacW +: FacW], ge_k_o[p*FacW +: FacW], ge_j_o[p*FacW +: FacW], ge_v_o[p*BW +: BW],
             ge_u_o[p*BW +: BW], ge_nrm_o[p*3*W +: 3*W], ge_pos_o[p*3*W +: 3*W]} = port_vtx[p*VtxW +: VtxW];
   end
+
+  // The systems sim::UnitConfig accepts (sim/params.cpp, UnitConfig::validate).
+  `TESS_ASSERT_PARAM(UnitsRange_A, Units >= 1 && Units <= 16)
+  `TESS_ASSERT_PARAM(GePortsRange_A, GePorts >= 1 && GePorts <= 16)
+  `TESS_ASSERT_PARAM(ReorderSlotsRange_A, ReorderSlots >= 2 && ReorderSlots <= 65536)
+  `TESS_ASSERT_PARAM(DistributionRange_A, Distribution <= 2)
+  `TESS_ASSERT_PARAM(DispatchBatchRange_A, DispatchBatch >= 1 && DispatchBatch <= 64)
+  `TESS_ASSERT_PARAM(RuntimeConfigRange_A, RuntimeConfig <= 1)
+
+  // The system's handshakes are never X out of reset; a GE port's vertex offered and not taken
+  // is offered, unchanged, in the next cycle (as tess_unit's VTX port).
+  `TESS_ASSERT_KNOWN(TriValidKnown_A, tri_valid_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(TriReadyKnown_A, tri_ready_o, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(GeValidKnown_A, ge_valid_o, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(GeReadyKnown_A, ge_ready_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(AdmitKnown_A, admit, clk_i, !rst_ni)
 
 endmodule

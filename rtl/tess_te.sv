@@ -15,8 +15,7 @@ module tess_te #(
   parameter int unsigned InjectBug  = tess_pkg::InjectBug,
   localparam int unsigned W         = CoordWidth,
   localparam int unsigned BufW      = (Buffers > 1) ? $clog2(Buffers) : 1,
-  localparam int unsigned VtxW      = 6 * W + 2 * (BaryBits + 1) + 3 * tess_pkg::FactorBits
-                                      + tess_pkg::IndexBits + tess_pkg::IdBits + 1 + tess_pkg::FlagBits
+  localparam int unsigned VtxW      = tess_pkg::vtx_w(W, BaryBits)
 ) (
   input  logic                            clk_i,
   input  logic                            rst_ni,

@@ -24,7 +24,8 @@ module tess_unit #(
   parameter int unsigned InjectBug     = tess_pkg::InjectBug,
   localparam int unsigned W            = 1 + CoordIntBits + CoordFracBits,
   localparam int unsigned AlphaW       = AlphaBits + 1,             // alpha in 0..2^A
-  localparam int unsigned CtrW         = tess_pkg::CounterBits
+  localparam int unsigned CtrW         = tess_pkg::CounterBits,
+  localparam int unsigned NumCtr       = tess_pkg::num_ctrs(IntBlocks)
 ) (
   input  logic                            clk_i,
   input  logic                            rst_ni,
@@ -57,32 +58,17 @@ module tess_unit #(
   output logic [tess_pkg::IdBits-1:0]     vtx_id_o,
   output logic                            vtx_last_o,
   output logic [tess_pkg::FlagBits-1:0]   vtx_flags_o,
-  // Performance counters (§10; sim/unit_io.hpp UnitCounters)
-  output logic [CtrW-1:0]                 perf_cycles_o,
-  output logic [CtrW-1:0]                 perf_tri_in_o,
-  output logic [CtrW-1:0]                 perf_vtx_out_o,
-  output logic [CtrW-1:0]                 perf_tri_stalls_o,
-  output logic [IntBlocks*CtrW-1:0]       perf_int_busy_o,
-  output logic [CtrW-1:0]                 perf_te_context_limited_o,
-  output logic [CtrW-1:0]                 perf_te_int_limited_o,
-  output logic [CtrW-1:0]                 perf_te_busy_o,
-  output logic [CtrW-1:0]                 perf_te_blocked_by_gpe_o,
-  output logic [CtrW-1:0]                 perf_te_starved_by_cpg_o,
-  output logic [CtrW-1:0]                 perf_te_idle_o,
-  output logic [CtrW-1:0]                 perf_te_pipeline_o,
-  output logic [CtrW-1:0]                 perf_cpg_busy_o,
-  output logic [CtrW-1:0]                 perf_cpg_blocked_o,
-  output logic [CtrW-1:0]                 perf_cpg_idle_o
+  // Performance counters (§10; sim/unit_io.hpp UnitCounters): counter k (tess_pkg::ctr_e) at
+  // [k CtrW +: CtrW], INT block i's busy cycles at k = CtrIntBusy + i
+  output logic [NumCtr*CtrW-1:0]          perf_ctr_o
 );
 
   localparam int unsigned LBits  = tess_pkg::FactorBits;
   localparam int unsigned IdBits = tess_pkg::IdBits;
   localparam int unsigned FlagW  = tess_pkg::FlagBits;
-  localparam int unsigned DescW  = tess_pkg::DescBits;
-  localparam int unsigned TagW   = (CpgTags != 0) ? 18 * W : 0;
   localparam int unsigned AlphaWords = (AlphaBits != 0) ? 3 * AlphaW : 0;
-  localparam int unsigned TriW   = 18 * W + DescW + IdBits + TagW + AlphaWords;
-  localparam int unsigned VtxW   = 6 * W + 2 * (BaryBits + 1) + 3 * LBits + tess_pkg::IndexBits + IdBits + 1 + FlagW;
+  localparam int unsigned TriW   = tess_pkg::tri_w(W, CpgTags, AlphaBits);
+  localparam int unsigned VtxW   = tess_pkg::vtx_w(W, BaryBits);
   localparam int unsigned TriCntW = $clog2(TriFifoDepth + 1);
   localparam int unsigned VtxCntW = $clog2(VtxFifoDepth + 1);
 
@@ -261,50 +247,61 @@ module tess_unit #(
   assign unused_counts = ^{tri_count, vtx_count};
 
   // ------------------------------------------------------------------ performance counters
-  // One increment vector, one adder each: counters[k] += inc[k] every cycle out of reset.
-  localparam int unsigned NumCtr = 14 + IntBlocks;
+  // One increment per counter, set at its tess_pkg::ctr_e index; one adder each:
+  // counter k += inc[k] every cycle out of reset.
   logic [NumCtr-1:0] ctr_inc;
-  (* mem2reg *) logic [CtrW-1:0]   ctr_q [NumCtr];
-  assign ctr_inc = {int_busy,
-                    tri_valid_i && !tri_ready_o,  // 13: triangles refused (input back-pressure)
-                    te_int_limited,             // 12
-                    te_ctx_limited,             // 11
-                    !cpg_busy && !cpg_blocked,  // 10: cpg idle
-                    cpg_blocked,                // 9
-                    cpg_busy,                   // 8
-                    te_pipeline,                // 7
-                    te_idle,                    // 6
-                    te_starved,                 // 5
-                    te_blocked,                 // 4
-                    te_busy,                    // 3
-                    vtx_pop,                    // 2: vertices accepted by the GPE
-                    tri_push,                   // 1: triangles accepted at the input
-                    1'b1};                      // 0: cycles
+  assign ctr_inc[tess_pkg::CtrCycles]           = 1'b1;
+  assign ctr_inc[tess_pkg::CtrTriIn]            = tri_push;
+  assign ctr_inc[tess_pkg::CtrVtxOut]           = vtx_pop;
+  assign ctr_inc[tess_pkg::CtrTriStalls]        = tri_valid_i && !tri_ready_o;
+  assign ctr_inc[tess_pkg::CtrTeContextLimited] = te_ctx_limited;
+  assign ctr_inc[tess_pkg::CtrTeIntLimited]     = te_int_limited;
+  assign ctr_inc[tess_pkg::CtrTeBusy]           = te_busy;
+  assign ctr_inc[tess_pkg::CtrTeBlockedByGpe]   = te_blocked;
+  assign ctr_inc[tess_pkg::CtrTeStarvedByCpg]   = te_starved;
+  assign ctr_inc[tess_pkg::CtrTeIdle]           = te_idle;
+  assign ctr_inc[tess_pkg::CtrTePipeline]       = te_pipeline;
+  assign ctr_inc[tess_pkg::CtrCpgBusy]          = cpg_busy;
+  assign ctr_inc[tess_pkg::CtrCpgBlocked]       = cpg_blocked;
+  assign ctr_inc[tess_pkg::CtrCpgIdle]          = !cpg_busy && !cpg_blocked;
+  assign ctr_inc[tess_pkg::CtrIntBusy +: IntBlocks] = int_busy;
 
   for (genvar k = 0; k < NumCtr; k++) begin : g_ctr
+    logic [CtrW-1:0] ctr_d, ctr_q;
+    assign ctr_d = ctr_inc[k] ? ctr_q + CtrW'(1) : ctr_q;
     always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) ctr_q[k] <= '0;
-      else if (ctr_inc[k]) ctr_q[k] <= ctr_q[k] + CtrW'(1);
+      if (!rst_ni) ctr_q <= '0;
+      else         ctr_q <= ctr_d;
     end
+    assign perf_ctr_o[k*CtrW +: CtrW] = ctr_q;
   end
 
-  assign perf_cycles_o            = ctr_q[0];
-  assign perf_tri_in_o            = ctr_q[1];
-  assign perf_vtx_out_o           = ctr_q[2];
-  assign perf_te_busy_o           = ctr_q[3];
-  assign perf_te_blocked_by_gpe_o = ctr_q[4];
-  assign perf_te_starved_by_cpg_o = ctr_q[5];
-  assign perf_te_idle_o           = ctr_q[6];
-  assign perf_te_pipeline_o       = ctr_q[7];
-  assign perf_cpg_busy_o          = ctr_q[8];
-  assign perf_cpg_blocked_o       = ctr_q[9];
-  assign perf_cpg_idle_o          = ctr_q[10];
-  assign perf_te_context_limited_o = ctr_q[11];
-  assign perf_te_int_limited_o    = ctr_q[12];
-  assign perf_tri_stalls_o        = ctr_q[13];
-  for (genvar i = 0; i < IntBlocks; i++) begin : g_int_ctr
-    assign perf_int_busy_o[i*CtrW +: CtrW] = ctr_q[14 + i];
-  end
+  // The configurations sim::UnitConfig accepts (sim/params.cpp, UnitConfig::validate); the RTL
+  // is verified in no other.
+  `TESS_ASSERT_PARAM(CoordIntBitsRange_A, CoordIntBits >= 1 && CoordIntBits <= 8)
+  `TESS_ASSERT_PARAM(CoordFracBitsRange_A, CoordFracBits >= 8 && CoordFracBits <= 26)
+  `TESS_ASSERT_PARAM(CoordWidthRange_A, W <= 32)
+  `TESS_ASSERT_PARAM(BaryBitsRange_A, BaryBits >= 7 && BaryBits <= 20)
+  `TESS_ASSERT_PARAM(AlphaBitsRange_A, AlphaBits <= 16)
+  `TESS_ASSERT_PARAM(IntBlocksRange_A, IntBlocks >= 1 && IntBlocks <= 32)
+  `TESS_ASSERT_PARAM(IntLatencyRange_A, IntLatency >= 1 && IntLatency <= 8)
+  `TESS_ASSERT_PARAM(ContextsRange_A, Contexts >= 1 && Contexts <= 16)
+  `TESS_ASSERT_PARAM(TriFifoDepthRange_A, TriFifoDepth >= 1 && TriFifoDepth <= 64)
+  `TESS_ASSERT_PARAM(VtxFifoDepthRange_A, VtxFifoDepth >= 1 && VtxFifoDepth <= 64)
+  `TESS_ASSERT_PARAM(CpBuffersRange_A, CpBuffers >= 1 && CpBuffers <= 8)
+  `TESS_ASSERT_PARAM(CpgLanesRange_A, CpgLanes == 1 || CpgLanes == 3)
+  `TESS_ASSERT_PARAM(CpgDigitBitsRange_A, CpgDigitBits >= 1 && CpgDigitBits <= W)
+  `TESS_ASSERT_PARAM(CpgCopiesRange_A, CpgCopies >= 1 && CpgCopies <= 16)
+  `TESS_ASSERT_PARAM(CpgProductRegRange_A, CpgProductReg <= 1)
+  `TESS_ASSERT_PARAM(CpgTagsRange_A, CpgTags <= 1)
+
+  // Handshakes and the vertex offered are never X out of reset (4-state simulation).
+  `TESS_ASSERT_KNOWN(TriValidKnown_A, tri_valid_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(TriReadyKnown_A, tri_ready_o, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(VtxValidKnown_A, vtx_valid_o, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(VtxReadyKnown_A, vtx_ready_i, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(VtxKnown_A, vtx_valid_o ? vtx_head : '0, clk_i, !rst_ni)
+  `TESS_ASSERT_KNOWN(ModeKnown_A, mode_i, clk_i, !rst_ni)
 
   // Interface rules the unit itself must keep: a vertex offered and not taken stays, unchanged;
   // an accepted uniform patch has L in 1..64; the FSU's records are complete when the CPG writes.

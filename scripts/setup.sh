@@ -32,6 +32,7 @@ FULL_PACKAGES=(
   libgtest-dev libgmock-dev     # unit tests
   libbenchmark-dev              # microbenchmarks
   yosys                         # synthesis for hardware cost
+  iverilog                      # 4-state simulation: the RTL's X checks fire on an X (tests/rtl/x_check_test.sh)
   python3-matplotlib python3-numpy  # plots (run with /usr/bin/python3)
   python3-distributed           # sweep.py --scheduler: points on a Dask cluster
   clang libclang-rt-14-dev      # libFuzzer targets (fuzz/, scripts/fuzz.sh)

@@ -120,6 +120,13 @@ class VerilatedUnit final : public RtlUnit {
     }
     Verilated::threadContextp(context_.get());
     model_ = std::make_unique<Model>(context_.get(), "tess");
+    // perf_ctr_o is 64 (NumScalarCtrs + N) bits: tess_pkg::ctr_e has as many counters as the
+    // registry has rows in the RTL.
+    static_assert(detail::IsWide<std::remove_cvref_t<decltype(model_->perf_ctr_o)>>::value);
+    if (sizeof(model_->perf_ctr_o) != 8 * (sim::kRtlScalarCounters + static_cast<std::size_t>(int_blocks())))
+      throw std::logic_error(std::string(spec.name) + ": perf_ctr_o is " + std::to_string(8 * sizeof(model_->perf_ctr_o)) +
+                             " bits, the counter registry reads " +
+                             std::to_string(64 * (sim::kRtlScalarCounters + static_cast<std::size_t>(int_blocks()))));
     set_mode(NormalMode::Quadratic);
     reset();
   }
@@ -192,17 +199,18 @@ class VerilatedUnit final : public RtlUnit {
     return v;
   }
 
-  // Every registry row with an RTL port (sim/blocks/counter_registry.hpp), read from the port of
-  // that name; rows without one stay 0 (the GPE's classes, cpg wait_gpe: the RTL's CPG is
-  // dedicated). A port named in the registry that the model lacks does not compile.
+  // Every registry row with an RTL counter (sim/blocks/counter_registry.hpp), read from the
+  // counter bus perf_ctr_o at its rtl_counter_index (tess_pkg::ctr_e); rows without one stay 0
+  // (the GPE's classes, cpg wait_gpe: the RTL's CPG is dedicated).
   sim::UnitCounters counters() const override {
     sim::UnitCounters k;
     k.int_blocks = int_blocks();
-#define TESSIM_READ_PORT(BLOCK, ID, KEY, UNIT, PORT, ...) \
-  if constexpr (constexpr std::size_t row = sim::row_of_port(#PORT); row < sim::kCounterRegistry.size()) \
-    read_counter(k, row, model_->PORT);
-    TESSIM_COUNTER_REGISTRY(TESSIM_READ_PORT)
-#undef TESSIM_READ_PORT
+    for (std::size_t row = 0; row < sim::kCounterRegistry.size(); ++row) {
+      if (!sim::kCounterRegistry[row].has_rtl()) continue;
+      const auto first = static_cast<int>(sim::rtl_counter_index(row));
+      for (int i = 0; i < sim::counter_instances(k, row); ++i)
+        *sim::counter_slot(k, row, i) = detail::get_bits(model_->perf_ctr_o, 64 * (first + i), 64);
+    }
     return k;
   }
 
@@ -269,13 +277,6 @@ class VerilatedUnit final : public RtlUnit {
   void set_wave_enabled(bool enabled) override { wave_enabled_ = enabled && fst_ != nullptr; }
 
  private:
-  // A counter port: one 64-bit counter, or one per INT block at [64i +: 64] for an INT row.
-  template <class Port>
-  void read_counter(sim::UnitCounters& k, std::size_t row, const Port& port) const {
-    for (int i = 0; i < sim::counter_instances(k, row); ++i)
-      *sim::counter_slot(k, row, i) = detail::get_bits(port, 64 * i, 64);
-  }
-
   void drive_idle() {
     model_->tri_valid_i = 0;
     model_->vtx_ready_i = 0;

@@ -24,7 +24,7 @@ constexpr auto Tri = PortItem::Triangle;
 constexpr auto Vtx = PortItem::Vertex;
 constexpr auto None = PortItem::None;
 
-// The data and control ports, in declaration order; the perf_*_o outputs follow them.
+// The data and control ports, in declaration order; the counter bus perf_ctr_o follows them.
 constexpr std::array<Port, 26> kIoPorts{{
     {"clk_i", In, bits(1), None, 0, "clock"},
     {"rst_ni", In, bits(1), None, 0, "asynchronous reset, active low"},
@@ -58,30 +58,18 @@ constexpr std::array<Port, 26> kIoPorts{{
     {"vtx_flags_o", Out, bits(pkg::kFlagBits), Vtx, 0, "flag bits of the patch's control points (codes)"},
 }};
 
-// The counter outputs: the registry's rows with a port, in its order (the RTL declares them in
-// that order). An INT block row is N counters side by side.
-constexpr std::size_t kPerfPortCount = [] {
-  std::size_t n = 0;
-  for (const CounterRow& r : kCounterRegistry) n += r.has_port();
-  return n;
-}();
-static_assert(row_count(CounterBlock::Int) == 2 && kCounterRegistry[first_row(CounterBlock::Int)].has_port() &&
-                  !kCounterRegistry[first_row(CounterBlock::Int) + 1].has_port() && pkg::kCounterBits == 64,
-              "perf_port's text for the INT block row assumes one ported INT row (busy) of 64-bit counters");
-
-constexpr Port perf_port(const CounterRow& r, bool first) {
-  if (r.block == CounterBlock::Int)
-    return {r.port.data(), Out, {{{pkg::kCounterBits, kVarIntBlocks}}}, None, 0,
-            "busy cycles of INT block i at [64i +: 64]"};
-  return {r.port.data(), Out, counter, None, 0, first ? "counter (docs/statistics.md)" : "counter"};
-}
-
-constexpr auto kPorts = [] {
-  std::array<Port, kIoPorts.size() + kPerfPortCount> a{};
+// The counters: one bus, the registry's rows with an RTL counter at rtl_counter_index (the
+// order of tess_pkg::ctr_e), an INT block row N counters side by side, last.
+static_assert(pkg::kCounterBits == 64, "perf_ctr_o's text assumes 64-bit counters");
+constexpr std::array<Port, kIoPorts.size() + 1> kPorts = [] {
+  std::array<Port, kIoPorts.size() + 1> a{};
   std::size_t i = 0;
   for (const Port& p : kIoPorts) a[i++] = p;
-  for (const CounterRow& r : kCounterRegistry)
-    if (r.has_port()) a[i] = perf_port(r, i == kIoPorts.size()), ++i;
+  a[i] = {"perf_ctr_o", Out,
+          {{{pkg::kCounterBits, kVarIntBlocks}, {static_cast<int>(pkg::kCounterBits * kRtlScalarCounters), 0}}},
+          None, 0,
+          "counters (docs/statistics.md): counter k of tess_pkg::ctr_e at [64k +: 64], INT block i's busy cycles "
+          "at k = CtrIntBusy + i"};
   return a;
 }();
 

@@ -27,7 +27,7 @@ inline constexpr int kModeBits = 2;      // mode_i
 inline constexpr int kPatternBits = 2;   // TriPattern
 inline constexpr int kFixBits = 23;      // a D3D11 factor: unsigned 16.16, at most 64
 inline constexpr int kIndexBits = 12;    // a point's index in its patch
-inline constexpr int kCounterBits = 64;  // perf_*_o
+inline constexpr int kCounterBits = 64;  // one counter of perf_ctr_o
 // The triangle's pattern descriptor {inner factor, outer factors 2..0, pattern, L}.
 inline constexpr int kDescBits = kFactorBits + kPatternBits + 4 * kFixBits;
 

@@ -104,7 +104,7 @@ nlohmann::json schema_json() {
   for (GpeClass c : kGpeClasses) gpe.push_back(to_string(c));
   json per_run = json::array(), counters = json::array(), outputs = json::array();
   for (const CounterField& f : kRunCounters) per_run.push_back(f.name);
-  // The RTL's perf_*_o counters in the order the co-simulation compares them.
+  // The RTL's counters (perf_ctr_o) in the order the co-simulation compares them.
   for (const CounterField& f : kRunCounters) counters.push_back(f.name);
   counters.push_back("int_busy[0..N-1]");
   for (const CounterField& f : kClassCounters) counters.push_back(f.name);

@@ -1,7 +1,8 @@
-// The Verilated read-out of the counters (rtl/verilated/verilated_unit.hpp reads the port of every
-// row of sim/base/counter_registry.hpp that has one): after co-simulated runs, every such row
-// of the RTL equals the cycle model's, and each was counted (non-zero) in at least one run, so
-// a row the read-out skipped (left 0) could not pass. Rows without a port read 0 from the RTL.
+// The Verilated read-out of the counters (rtl/verilated/verilated_unit.hpp reads every row of
+// sim/base/counter_registry.hpp that has an RTL counter from perf_ctr_o at its tess_pkg::ctr_e
+// index): after co-simulated runs, every such row of the RTL equals the cycle model's, and each
+// was counted (non-zero) in at least one run, so a row the read-out skipped (left 0) or read at
+// another row's index could not pass. Rows without an RTL counter read 0 from the RTL.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -22,7 +23,7 @@ struct ReadoutRun {
   int max_L;
 };
 
-TEST(CounterReadout, EveryRowWithAPortEqualsTheCycleModel) {
+TEST(CounterReadout, EveryRowInTheRtlEqualsTheCycleModel) {
   // N = 1 and a fast GE: int_limited; latency 3 over 6 contexts: context_limited; a slow GE behind
   // a fast CPG (3 lanes, radix 2^8): blocked_by_gpe and a blocked CPG.
   const ReadoutRun runs[] = {{"n1", 1, NormalMode::Quadratic, 6},
@@ -46,19 +47,19 @@ TEST(CounterReadout, EveryRowWithAPortEqualsTheCycleModel) {
       for (int i = 0; i < sim::counter_instances(r.model_counters, row); ++i) {
         const std::uint64_t model = sim::counter_value(r.model_counters, row, i);
         const std::uint64_t rtl = sim::counter_value(r.rtl_counters, row, i);
-        if (c.has_port()) {
-          EXPECT_EQ(rtl, model) << c.name << " [" << i << "] from " << c.port;
+        if (c.has_rtl()) {
+          EXPECT_EQ(rtl, model) << c.name << " [" << i << "] from perf_ctr_o at " << c.rtl;
           if (model > 0) counted[row] = true;
         } else if (sim::counter_slot(r.rtl_counters, row, i)) {
-          EXPECT_EQ(rtl, 0u) << c.name << ": no port, nothing to read";
+          EXPECT_EQ(rtl, 0u) << c.name << ": not in the RTL, nothing to read";
         }
       }
     }
   }
   for (std::size_t row = 0; row < sim::kCounterRegistry.size(); ++row) {
     const sim::CounterRow& c = sim::kCounterRegistry[row];
-    if (c.has_port()) {
-      EXPECT_TRUE(counted[row]) << c.name << " (" << c.port << ") was 0 in every run";
+    if (c.has_rtl()) {
+      EXPECT_TRUE(counted[row]) << c.name << " (" << c.rtl << ") was 0 in every run";
     }
   }
 }

@@ -1,8 +1,9 @@
-// The counter registry (sim/base/counter_registry.hpp) against the RTL's counter ports, and
-// the outputs derived from it: every perf_*_o output of rtl/tess_unit.sv has exactly one row and
-// every row's port exists; every row reaches the statistics JSON, its units and the summary (the
-// report's legend: tests/cli/report_cli_test.cpp). (tests/rtl/counter_readout_test.cpp checks
-// that the Verilated read-out reads each port.)
+// The counter registry (sim/base/counter_registry.hpp) against the RTL's counters, and the
+// outputs derived from it: tess_pkg::ctr_e (rtl/tess_pkg.sv) lists exactly the rows with an RTL
+// counter, in the order of rtl_counter_index (the Verilated read-out's index into tess_unit's
+// perf_ctr_o), and tess_unit sets each enumerator's increment once; every row reaches the
+// statistics JSON, its units and the summary (the report's legend: tests/cli/report_cli_test.cpp).
+// (tests/rtl/counter_readout_test.cpp checks that the Verilated read-out reads each counter.)
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -10,6 +11,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -23,47 +25,60 @@
 namespace tessim::sim {
 namespace {
 
-// The perf_*_o outputs of tess_unit: every such name in its port list (module header to ");").
-std::map<std::string, int> rtl_counter_ports() {
-  std::ifstream in(std::string(TESSIM_SOURCE_DIR) + "/rtl/tess_unit.sv");
+std::string read_source(const char* path) {
+  std::ifstream in(std::string(TESSIM_SOURCE_DIR) + "/" + path);
   std::stringstream ss;
   ss << in.rdbuf();
-  const std::string sv = ss.str();
-  const std::size_t begin = sv.find("module tess_unit");
-  const std::size_t end = sv.find(");", begin);
-  if (begin == std::string::npos || end == std::string::npos) return {};
-  std::string header = sv.substr(begin, end - begin);
-  header = std::regex_replace(header, std::regex("//[^\n]*"), "");  // comments name ports too
-  std::map<std::string, int> ports;
-  const std::regex port(R"(\b(perf_\w+_o)\b)");
-  for (auto it = std::sregex_iterator(header.begin(), header.end(), port); it != std::sregex_iterator(); ++it)
-    ++ports[(*it)[1].str()];
-  return ports;
+  return std::regex_replace(ss.str(), std::regex("//[^\n]*"), "");  // comments name counters too
 }
 
-TEST(CounterRegistry, EveryRtlCounterPortHasExactlyOneRow) {
-  const std::map<std::string, int> ports = rtl_counter_ports();
-  // 3 per run, INT busy, 7 TE classes, 3 CPG classes today: a parse that finds few is broken.
-  ASSERT_GE(ports.size(), 14u) << "rtl/tess_unit.sv: the perf_*_o ports were not found";
-  for (const auto& [port, declared] : ports) {
-    EXPECT_EQ(declared, 1) << port << " declared " << declared << " times";
-    int rows = 0;
-    for (const CounterRow& r : kCounterRegistry) rows += r.port == port;
-    EXPECT_EQ(rows, 1) << port << ": " << rows << " rows of sim/base/counter_registry.hpp name it";
+// The enumerators of tess_pkg::ctr_e, in order.
+std::vector<std::string> rtl_counter_enum() {
+  const std::string pkg = read_source("rtl/tess_pkg.sv");
+  std::smatch m;
+  if (!std::regex_search(pkg, m, std::regex(R"(typedef\s+enum\s+int\s+unsigned\s*\{([^}]*)\}\s*ctr_e\s*;)"))) return {};
+  const std::string body = m[1].str();
+  std::vector<std::string> names;
+  const std::regex name(R"(\b(Ctr\w+)\b)");
+  for (auto it = std::sregex_iterator(body.begin(), body.end(), name); it != std::sregex_iterator(); ++it)
+    names.push_back((*it)[1].str());
+  return names;
+}
+
+TEST(CounterRegistry, RtlCounterEnumIsTheRegistrysRowsInBusOrder) {
+  const std::vector<std::string> names = rtl_counter_enum();
+  // 4 per run, INT busy, 7 TE classes, 3 CPG classes today: a parse that finds few is broken.
+  ASSERT_GE(names.size(), 15u) << "rtl/tess_pkg.sv: typedef enum ... ctr_e was not found";
+  std::vector<std::string> expected(names.size());
+  std::size_t rows = 0;
+  for (std::size_t row = 0; row < kCounterRegistry.size(); ++row) {
+    const CounterRow& r = kCounterRegistry[row];
+    if (!r.has_rtl()) continue;
+    ++rows;
+    ASSERT_LT(rtl_counter_index(row), names.size()) << r.name << " (" << r.rtl << ")";
+    expected[rtl_counter_index(row)] = std::string(r.rtl);
   }
-  for (const CounterRow& r : kCounterRegistry) {
-    if (r.has_port()) {
-      EXPECT_TRUE(ports.count(std::string(r.port))) << r.name << ": no output " << r.port;
-    }
+  EXPECT_EQ(rows, names.size()) << "tess_pkg::ctr_e and the registry's rows with an RTL counter differ in number";
+  EXPECT_EQ(names, expected) << "tess_pkg::ctr_e is not the registry's order (rtl_counter_index)";
+  EXPECT_EQ(names.back(), "CtrIntBusy") << "the per-INT-block counters come last";
+  EXPECT_EQ(kRtlScalarCounters + 1, names.size());
+}
+
+TEST(CounterRegistry, TessUnitIncrementsEveryCounterOnce) {
+  const std::string unit = read_source("rtl/tess_unit.sv");
+  for (const std::string& name : rtl_counter_enum()) {
+    const std::regex inc("assign\\s+ctr_inc\\[tess_pkg::" + name + "\\b");
+    const auto n = std::distance(std::sregex_iterator(unit.begin(), unit.end(), inc), std::sregex_iterator());
+    EXPECT_EQ(n, 1) << "rtl/tess_unit.sv sets ctr_inc[tess_pkg::" << name << "] " << n << " times";
   }
 }
 
-TEST(CounterRegistry, RowsWithoutPortsAreTheOnesTheRtlCannotCount) {
+TEST(CounterRegistry, RowsWithoutRtlCountersAreTheOnesTheRtlCannotCount) {
   for (const CounterRow& r : kCounterRegistry) {
-    const bool expected_port = r.block != CounterBlock::Gpe &&  // the GPE is the testbench's
-                               !(r.block == CounterBlock::Cpg && r.index == static_cast<int>(CpgClass::WaitGpe)) &&
-                               !(r.block == CounterBlock::Int && r.index == static_cast<int>(IntClass::Idle));
-    EXPECT_EQ(r.has_port(), expected_port) << r.name;
+    const bool expected_rtl = r.block != CounterBlock::Gpe &&  // the GPE is the testbench's
+                              !(r.block == CounterBlock::Cpg && r.index == static_cast<int>(CpgClass::WaitGpe)) &&
+                              !(r.block == CounterBlock::Int && r.index == static_cast<int>(IntClass::Idle));
+    EXPECT_EQ(r.has_rtl(), expected_rtl) << r.name;
   }
 }
 
@@ -75,8 +90,10 @@ TEST(CounterRegistry, DerivedNamesFollowTheRows) {
   EXPECT_EQ(kRunCounters.size(), row_count(CounterBlock::Run));
   EXPECT_STREQ(kClassCounters.front().name, "te_context_limited");
   EXPECT_STREQ(kClassCounters.back().name, "cpg_idle");
-  EXPECT_EQ(row_of_port("perf_tri_in_o"), first_row(CounterBlock::Run) + 1);
-  EXPECT_EQ(row_of_port("no_port"), kCounterRegistry.size());
+  EXPECT_EQ(row_of_rtl("CtrTriIn"), first_row(CounterBlock::Run) + 1);
+  EXPECT_EQ(row_of_rtl("no_rtl"), kCounterRegistry.size());
+  EXPECT_EQ(rtl_counter_index(row_of_rtl("CtrTriIn")), 1u);
+  EXPECT_EQ(rtl_counter_index(row_of_rtl("CtrIntBusy")), kRtlScalarCounters);
 }
 
 // A run in which every class of every block occurs is not needed: the JSON has every key anyway.

@@ -53,9 +53,19 @@ std::vector<std::string> split(const std::string& s, char sep) {
 }
 
 // tess_pkg's `localparam int unsigned NAME = EXPR;`, EXPR a sum of products of integers and
-// earlier names (all tess_pkg uses).
-std::map<std::string, long long> pkg_ints(const std::string& pkg) {
+// earlier names (all tess_pkg uses), and the enumerators of its `typedef enum int unsigned`s
+// (0, 1, ... in order: tess_pkg gives none a value).
+std::map<std::string, long long> pkg_ints(const std::string& pkg_text) {
   std::map<std::string, long long> values;
+  const std::string pkg = std::regex_replace(pkg_text, std::regex("//[^\n]*"), "");
+  const std::regex enum_body(R"(typedef\s+enum\s+int\s+unsigned\s*\{([^}]*)\})");
+  for (auto it = std::sregex_iterator(pkg.begin(), pkg.end(), enum_body); it != std::sregex_iterator(); ++it) {
+    long long k = 0;
+    for (const std::string& name : split((*it)[1].str(), ',')) {
+      const std::string n = std::regex_replace(name, std::regex("\\s+"), "");
+      if (!n.empty()) values[n] = k++;
+    }
+  }
   const std::regex line(R"(localparam\s+int\s+unsigned\s+(\w+)\s*=\s*([^;]+);)");
   for (auto it = std::sregex_iterator(pkg.begin(), pkg.end(), line); it != std::sregex_iterator(); ++it) {
     long long sum = 0;
@@ -209,7 +219,7 @@ TEST(RtlPackage, ItemWidthsAtTheDefaults) {
   hw.cpg_tags = 1;
   EXPECT_EQ(item_bits(PortItem::Triangle, hw), 36 * 24 + 101 + 32);
   EXPECT_EQ(width_text(find_port("vtx_u_o")->width), "bary_bits + 1");
-  EXPECT_EQ(width_text(find_port("perf_int_busy_o")->width), "64*int_blocks");
+  EXPECT_EQ(width_text(find_port("perf_ctr_o")->width), "64*int_blocks + " + std::to_string(64 * kRtlScalarCounters));
 }
 
 // The schema's RTL builds: rtl/builds.json as embedded. (Each build's flags through the
