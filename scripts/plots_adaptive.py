@@ -85,7 +85,7 @@ def fig_adaptive(rows, out):
               ["normals", "eye distance", "K", "N", "vertices per patch", "simulated", "no-buffer bound",
                "full-buffer bound", "limit"], perf,
               note="No-buffer bound: every patch costs max(C + 1, P·b) on its own; full-buffer bound: "
-                   "max(n(C + 1), V·b) for the whole run (sim/analytic.hpp).")
+                   "max(n(C + 1), V·b) for the whole run (sim/config/analytic.hpp).")
 
     bf = in_grid(rows, "adaptive_buffers")
     if not bf:

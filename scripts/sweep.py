@@ -106,7 +106,7 @@ _SCHEMAS = {}
 def schema(tessim):
     """`tessim schema`: the unit's parameters (key, flag, kind, type, range, default, RTL name),
     the INT operations and the CPG cycles per normal mode and coordinate format, as C++ defines
-    them (sim/params.hpp). Raises SpecError when the binary cannot say."""
+    them (sim/config/params.hpp). Raises SpecError when the binary cannot say."""
     tessim = str(tessim)
     if tessim not in _SCHEMAS:
         try:
