@@ -16,9 +16,9 @@ A configuration's cost is composed from per-module Yosys records (scripts/yosys_
 needs the unit elaborated by Yosys: 10-30 s a configuration on the 2-core machine, so about twenty
 minutes for the study's hundred-odd configurations. The composed result is therefore kept too, in
 docs/results/costs/configurations/<key>.json, under a SHA-256 of the record schema, the Yosys
-version, the RTL sources' names and content and the parameters: any edit of the RTL (a comment
-included) misses every composed result, and the configuration is elaborated and composed again
-from its records. A composed result is used only while every record it names is present.
+version, the RTL sources' names and text (comments and white space aside) and the parameters: any
+other edit of the RTL misses every composed result, and the configuration is elaborated and
+composed again from its records. A composed result is used only while every record it names is present.
 
     record   composes every listed configuration of the current RTL (synthesizing the records it
              lacks, `--jobs` Yosys processes at a time) and stores the composed results
@@ -59,10 +59,37 @@ def normalized(params, rtl_dir=REPO / "rtl"):
     return {k: int(v) for k, v in sorted(params.items()) if int(v) != defaults.get(k)}
 
 
+def without_comments(text):
+    """SystemVerilog text without its comments and with runs of white space as one space: a
+    comment or a re-indentation changes no composed key (string literals are kept as written)."""
+    out, i, n = [], 0, len(text)
+    while i < n:
+        c = text[i]
+        if c == '"':
+            j = i + 1
+            while j < n and text[j] != '"':
+                j += 2 if text[j] == "\\" else 1
+            out.append(text[i:j + 1])
+            i = j + 1
+        elif text.startswith("//", i):
+            j = text.find("\n", i)
+            i = n if j < 0 else j
+            out.append(" ")
+        elif text.startswith("/*", i):
+            j = text.find("*/", i + 2)
+            i = n if j < 0 else j + 2
+            out.append(" ")
+        else:
+            out.append(c)
+            i += 1
+    return " ".join("".join(out).split())
+
+
 def sources_digest(rtl_dir=REPO / "rtl"):
+    """SHA-256 of the RTL sources' names and text, comments and white space aside."""
     h = hashlib.sha256()
     for path in yosys_cost.rtl_sources(rtl_dir):
-        h.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+        h.update(path.name.encode() + b"\0" + without_comments(path.read_text()).encode() + b"\0")
     return h.hexdigest()
 
 

@@ -4,7 +4,7 @@
 1. The stored composed result of a configuration equals what Yosys elaborates and composes from
    the module records now (the default unit and one CPG variant): the store is a cache, not data
    of its own.
-2. Its key changes with any edit of the RTL sources, a comment included, and with the parameters;
+2. Its key changes with an edit of the RTL sources (not with a comment) and with the parameters;
    a composed result whose records are gone is not used.
 3. Pruning a copy of the records keeps every record the listed configurations compose from and
    deletes one they do not use.
@@ -59,8 +59,12 @@ def test_keys(tmp):
     copy = Path(tmp) / "rtl"
     shutil.copytree(ROOT / "rtl", copy)
     fifo = copy / "tess_fifo.sv"
-    fifo.write_text("// a comment\n" + fifo.read_text())
-    check("a comment in an RTL source changes the composed key", cost_records.composed_key({}, True, copy) != base)
+    text = fifo.read_text()
+    fifo.write_text("// a comment\n/* and another */\n" + text.replace("\n", "\n  ", 3))
+    check("a comment or re-indentation changes no composed key", cost_records.composed_key({}, True, copy) == base)
+    fifo.write_text(text.replace("endmodule", "  logic unused_extra;\nendmodule", 1))
+    check("an edit of an RTL source changes the composed key", cost_records.composed_key({}, True, copy) != base)
+    check("a string literal is kept whole", cost_records.without_comments('a = "x // y"; // z') == 'a = "x // y";')
     check("the parameters change the composed key", cost_records.composed_key({"IntBlocks": 3}, True) != base)
     check("a parameter at its default does not", cost_records.composed_key({"IntBlocks": 2}, True) == base)
     check("the Xilinx flag changes the composed key", cost_records.composed_key({}, False) != base)
