@@ -14,7 +14,7 @@
 // (N', Y, X; X alone for a θ-only corner) and each non-neutral corner's two tangent points. The
 // edge pass then takes the field normals (N' at tagged corners) and keeps the tag pass's tangent
 // points. One lane takes the corners and the tangents in turn; three lanes one each at a time.
-// Every value is exact until the one rounding the C++ reference (sim/cpg.cpp) applies, so the
+// Every value is exact until the one rounding the C++ reference (sim/values/cpg.cpp) applies, so the
 // results are bit-identical to compute_control_points for every CpgLanes and CpgDigitBits.
 `ifndef TESS_ASSERT_SVH
 `include "tess_assert.svh"
@@ -57,7 +57,7 @@ module tess_cpg #(
   localparam int unsigned IdBits  = tess_pkg::IdBits;
   localparam int unsigned SumTW   = W + 3;                     // sum of six tangent points
   localparam int unsigned X111W   = W + 5;                     // 3 sum(t) - 2 sum(P)
-  // Edge cycles (sim/cpg.cpp cpg_edge_cycles), D digit steps per division or square root;
+  // Edge cycles (sim/values/cpg.cpp cpg_edge_cycles), D digit steps per division or square root;
   // registered products (tess_cpg_edge) add steps to each edge and a cycle to b111.
   localparam int unsigned D        = (W + CpgDigitBits - 1) / CpgDigitBits;
   localparam bit          PR       = (CpgProductReg != 0);
@@ -67,7 +67,7 @@ module tess_cpg #(
   localparam int unsigned EdgeQuad = PR ? 3 * D + 13 : 3 * D + 9;
   localparam int unsigned B111Len  = PR ? 2 : 1;          // b111 cycles
   localparam int unsigned EdgesInTurn = (CpgLanes == 1) ? 3 : 1;  // edges one lane walks
-  // Tag pass (sim/cpg.cpp cpg_tag_cycles): a normalization takes scale, dot, D root and D
+  // Tag pass (sim/values/cpg.cpp cpg_tag_cycles): a normalization takes scale, dot, D root and D
   // division steps; a tagged corner the side test and three normalizations; a tangent 4 steps.
   localparam bit          Tags      = (CpgTags != 0);
   localparam int unsigned NormLen   = 2 + 2 * D;

@@ -34,7 +34,7 @@
 //   s10+D  m (reflect: E = D + 11)                           s11+D  issue m.m
 //   s12+D  m.m into the square root; load dividers with |m_c| 2^F
 //   s13+D ..  D square-root steps; s13+2D ..  D division steps (quadratic: E = 3D + 13)
-// and b111 takes two cycles instead of one (issue, then round). sim/cpg.cpp cpg_edge_cycles
+// and b111 takes two cycles instead of one (issue, then round). sim/values/cpg.cpp cpg_edge_cycles
 // holds the same E.
 // The silhouette blend (AlphaBits = A > 0) scales each w by the edge's alpha before it meets
 // its normal, w <- round(alpha w / 2^A) on one (A + 1) x DotW multiplier of its own, in the step
@@ -46,7 +46,7 @@
 //   s1 issue d.Na   s2 wa = d.Na; issue d.Nb   s3 wb = d.Nb; issue d.s; operand alpha wa
 //   s4 issue wa Na; operand alpha wb   s5 issue wb Nb   s6 issue d.d   s7 tangent near a
 //   s8 tangent near b
-// Every value is exact until the one rounding the C++ reference (sim/cpg.cpp) applies, so the
+// Every value is exact until the one rounding the C++ reference (sim/values/cpg.cpp) applies, so the
 // results are bit-identical to compute_control_points whatever DigitBits and ProductReg are.
 `ifndef TESS_ASSERT_SVH
 `include "tess_assert.svh"
@@ -104,7 +104,7 @@ module tess_cpg_edge #(
   localparam int unsigned DenW    = 2 * W + 2;                 // d.d < 3 * 2^2W
   localparam int unsigned MagW    = DenW + 1 + W;              // divider dividend magnitude
   // Micro-step indices within an edge: the step that issues each product (it is used R steps
-  // later) and the steps that use results (sim/cpg.cpp cpg_edge_cycles).
+  // later) and the steps that use results (sim/values/cpg.cpp cpg_edge_cycles).
   localparam bit          PR      = (ProductReg != 0);
   localparam bit          Al      = (AlphaBits != 0);
   localparam int unsigned R       = PR ? 1 : 0;

@@ -14,7 +14,7 @@
 //   tan0 .. tan3   the tagged tangent point near Pj on edge Pj -> Pk:
 //                  step = (1 - θ)(Pk - Pj); d = sat(Pj + sat(round(step/3)));
 //                  Π = -n.(d - Pj); b = sat(d + round(Π m))
-// Every value is exact until the one rounding the C++ reference (sim/cpg.cpp,
+// Every value is exact until the one rounding the C++ reference (sim/values/cpg.cpp,
 // compute_control_points) applies, so the results are bit-identical to it.
 `ifndef TESS_ASSERT_SVH
 `include "tess_assert.svh"

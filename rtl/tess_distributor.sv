@@ -1,4 +1,4 @@
-// Distributor of a system of units (sim/system.cpp UnitSystem::choose and the dispatch part of
+// Distributor of a system of units (sim/system/system.cpp UnitSystem::choose and the dispatch part of
 // UnitSystem::tick): hands the offered triangle, or a batch of DispatchBatch of them, to one of
 // the Units units by its policy, and keeps per unit the patches and vertices dispatched to it and
 // not yet admitted into the reassembly buffer (a patch leaves with its last vertex).

@@ -1,5 +1,5 @@
 // Sequential restoring divider of one CPG lane: DigitBits quotient bits a cycle (radix
-// 2^DigitBits), Steps = ceil(QuotW / DigitBits) cycles. Computes sim/fixed.hpp
+// 2^DigitBits), Steps = ceil(QuotW / DigitBits) cycles. Computes sim/base/fixed.hpp
 // div_trunc(num, den) for den >= 0: the quotient of |num| by den truncated, given the sign of
 // num, saturated to QuotW bits (two's complement); den = 0 gives 0 and the divide-by-zero flag.
 //

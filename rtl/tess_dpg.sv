@@ -5,7 +5,7 @@
 // Uniform pattern: the lattice in pattern order (rows k = 0..L, in a row j = 0..L-k),
 // u = bary_weight(j, L), v = bary_weight(k, L),
 // w = 2^B - u - v, where bary_weight(j, L) = floor((j 2^(B+1) + L) / 2L) is the round half up
-// of j 2^B / L (sim/fixed.hpp).
+// of j 2^B / L (sim/base/fixed.hpp).
 //
 // No divider: the weights are kept as quotient and remainder of that division and advanced
 // exactly. Going from j to j + 1 adds 2^(B+1) to the numerator, i.e. q(L) = floor(2^B / L) to
@@ -13,7 +13,7 @@
 // reaches 2L). q and r come from a 64-entry constant table indexed by L. At j = 0 the weight
 // is 0 with remainder L, so a new row or patch needs no state.
 //
-// D3D11 pattern (docs/patterns.md; sim/d3d11_walk.cpp D3D11PointWalker): the outer ring
+// D3D11 pattern (docs/patterns.md; sim/values/d3d11_walk.cpp D3D11PointWalker): the outer ring
 // from the corner v = 1, edge by edge, then the rings inwards, then the centre of an even
 // pattern. Each point is one placement on the current edge (from the setup the FSU stored with
 // the patch, stepped from the point before); an inner ring's offset from the outer edges (2/3 t_r, and half of
@@ -152,7 +152,7 @@ module tess_dpg #(
   end
 
   // ------------------------------------------------------------------ D3D11 walk
-  // The placement t of a point on its edge (sim/d3d11_walk.cpp d3d11_place: the blend
+  // The placement t of a point on its edge (sim/values/d3d11_walk.cpp d3d11_place: the blend
   // i' fw + i cw of the unmirrored index i, rounded, mirrored past the middle; i' = i - 1 past
   // the split) is not multiplied out per point:
   // along an edge the walk moves the index by one, so i moves by at most one and the blend by

@@ -1,4 +1,4 @@
-// FSU: factor setup unit (docs/microarchitecture.md §7; sim/d3d11_walk.cpp
+// FSU: factor setup unit (docs/microarchitecture.md §7; sim/values/d3d11_walk.cpp
 // d3d11_factors_from_fixed, d3d11_setup). The factors arrive processed by the host (clamped,
 // rounded, 16.16): this is the tessellator's integer part, no floating point.
 //

@@ -1,4 +1,4 @@
-// One factor's edge setup (docs/microarchitecture.md §7; sim/d3d11_walk.cpp d3d11_edge):
+// One factor's edge setup (docs/microarchitecture.md §7; sim/values/d3d11_walk.cpp d3d11_edge):
 // how a D3D11 factor spreads its points along a unit edge. From the half factor
 // H = (F + 2^-16) / 2 (plus 1/2 when odd) come the points per half edge ceil(H), the split
 // point (ruler order: the top bit of floor(H) cleared), the segment counts of floor(H) and

@@ -1,5 +1,5 @@
 // INT block: one barycentric combination of three points, r = w A + u B + v C per component,
-// with w + u + v = 2^B (sim/fixed.hpp int_op): the exact sum of the three products is
+// with w + u + v = 2^B (sim/base/fixed.hpp int_op): the exact sum of the three products is
 // rounded half up once, and cannot overflow because r is a convex combination.
 //
 // Latency (docs/microarchitecture.md §8): an op issued in cycle t leaves on res_o in cycle

@@ -1,6 +1,6 @@
 // Sequential integer square root, digit by digit: DigitBits root bits a cycle, Steps =
 // ceil(RootW / DigitBits) cycles, of a 2*RootW-bit radicand. After the last step root_o =
-// floor(sqrt(x)) (sim/fixed.hpp isqrt).
+// floor(sqrt(x)) (sim/base/fixed.hpp isqrt).
 // The radicand is taken zero-extended to 2*RW bits (RW = Steps * DigitBits >= RootW), which
 // only adds leading zero root bits. Each sub-step brings down the next two radicand bits and
 // subtracts the trial 4r + 1 where it fits; the remainder stays <= 2r, so it needs RW + 1 bits.

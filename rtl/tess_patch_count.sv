@@ -1,5 +1,5 @@
 // The number of vertices of a triangle's pattern, from its descriptor alone, in one combinational
-// step (sim/cpg.cpp patch_vertex_count): (L + 1)(L + 2) / 2 for the uniform pattern; for a D3D11
+// step (sim/values/cpg.cpp patch_vertex_count): (L + 1)(L + 2) / 2 for the uniform pattern; for a D3D11
 // pattern the outer ring's points plus 3R(n - 2 - R) of the R = n/2 - 1 inner rings and the centre
 // of an even pattern, n the points of the inner edge (tess_fsu's per-patch part, with the edge
 // shapes of tess_fsu_edge's first stage: the same arithmetic, not registered). The distributor of

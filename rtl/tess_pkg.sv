@@ -1,6 +1,6 @@
 // Parameters, encodings and constants of the PN tessellation unit, in one place.
-// The defaults match sim/config.hpp (UnitConfig); the arithmetic constants match
-// sim/fixed.hpp. Every module names items as tess_pkg::NAME (no wildcard import: the
+// The defaults match sim/config/config.hpp (UnitConfig); the arithmetic constants match
+// sim/base/fixed.hpp. Every module names items as tess_pkg::NAME (no wildcard import: the
 // Yosys 0.23 front end rejects `import pkg::*`).
 package tess_pkg;
 
@@ -36,7 +36,7 @@ package tess_pkg;
   localparam int unsigned MaxFactor  = 64;
   localparam int unsigned CounterBits = 64;
 
-  // ---- tessellation patterns (§7; sim/cpg.hpp TriPattern) ----
+  // ---- tessellation patterns (§7; sim/values/cpg.hpp TriPattern) ----
   localparam int unsigned PatternBits = 2;
   localparam logic [1:0] PatUniform  = 2'd0;  // one factor L, the lattice (j/L, k/L)
   localparam logic [1:0] PatInteger  = 2'd1;  // D3D11 pattern, integer (and pow2) partitioning
@@ -76,7 +76,7 @@ package tess_pkg;
   // ---- performance counters (§10) ----
   // tess_unit's perf_ctr_o carries counter k at [k CounterBits +: CounterBits], k one of these;
   // INT block i's busy cycles at CtrIntBusy + i (so they come last). The order is the counter
-  // registry's (sim/blocks/counter_registry.hpp: its rows with an RTL counter, per-INT-block
+  // registry's (sim/base/counter_registry.hpp: its rows with an RTL counter, per-INT-block
   // rows last); tests/sim/counter_registry_test.cpp checks that the two lists agree.
   typedef enum int unsigned {
     CtrCycles,              // every cycle out of reset
@@ -101,12 +101,12 @@ package tess_pkg;
     num_ctrs = NumScalarCtrs + int_blocks;
   endfunction
 
-  // ---- normal modes (sim/cpg.hpp mode_code) ----
+  // ---- normal modes (sim/values/cpg.hpp mode_code) ----
   localparam logic [1:0] ModeQuadratic = 2'd0;
   localparam logic [1:0] ModeReflect   = 2'd1;
   localparam logic [1:0] ModeLinear    = 2'd2;
 
-  // ---- sticky patch flags (sim/fixed.hpp FxFlag) ----
+  // ---- sticky patch flags (sim/base/fixed.hpp FxFlag) ----
   localparam logic [1:0] FlagSaturated = 2'b01;
   localparam logic [1:0] FlagDivByZero = 2'b10;
 
@@ -123,7 +123,7 @@ package tess_pkg;
   localparam int unsigned OpNormalL1 = 6;   // output normal, linear
   localparam int unsigned OpGeomL3   = 13;  // output position
 
-  // ---- constants of the CPG (sim/fixed.hpp) ----
+  // ---- constants of the CPG (sim/base/fixed.hpp) ----
   // The divisions by 3 and 12 multiply by round(2^G / 3) and round(2^G / 12), G = F + 8.
   localparam int unsigned ConstGuardBits = 8;
 

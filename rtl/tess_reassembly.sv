@@ -1,4 +1,4 @@
-// Reassembly buffer of a system of units (sim/system.cpp UnitSystem::tick, push, pop): the
+// Reassembly buffer of a system of units (sim/system/system.cpp UnitSystem::tick, push, pop): the
 // units' vertices back in stream order for GePorts geometry-engine ports.
 //
 // A pool of ReorderSlots (R) vertex slots holds one linked queue per unit (head, tail, count, a

@@ -1,4 +1,4 @@
-// Saturation of a two's-complement value to a narrower width (sim/fixed.hpp saturate):
+// Saturation of a two's-complement value to a narrower width (sim/base/fixed.hpp saturate):
 // clamps to [-2^(OutW-1), 2^(OutW-1) - 1] and reports whether the value moved.
 module tess_sat #(
   parameter int unsigned InW  = 32,

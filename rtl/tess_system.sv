@@ -1,5 +1,5 @@
 // A system of Units tessellation units on one triangle stream (docs/microarchitecture.md §13;
-// sim/system.hpp UnitSystem, its cycle-by-cycle specification): a distributor hands each
+// sim/system/system.hpp UnitSystem, its cycle-by-cycle specification): a distributor hands each
 // triangle, or batch of DispatchBatch triangles, to a unit by its policy (tess_distributor); a
 // reassembly buffer of ReorderSlots vertex slots shared by the units puts their output back in
 // stream order for GePorts geometry-engine ports (tess_reassembly), so the system's output is a
@@ -221,7 +221,7 @@ module tess_system #(
             ge_u_o[p*BW +: BW], ge_nrm_o[p*3*W +: 3*W], ge_pos_o[p*3*W +: 3*W]} = port_vtx[p*VtxW +: VtxW];
   end
 
-  // The systems sim::UnitConfig accepts (sim/params.cpp, UnitConfig::validate).
+  // The systems sim::UnitConfig accepts (sim/config/params.cpp, UnitConfig::validate).
   `TESS_ASSERT_PARAM(UnitsRange_A, Units >= 1 && Units <= 16)
   `TESS_ASSERT_PARAM(GePortsRange_A, GePorts >= 1 && GePorts <= 16)
   `TESS_ASSERT_PARAM(ReorderSlotsRange_A, ReorderSlots >= 2 && ReorderSlots <= 65536)

@@ -58,7 +58,7 @@ module tess_unit #(
   output logic [tess_pkg::IdBits-1:0]     vtx_id_o,
   output logic                            vtx_last_o,
   output logic [tess_pkg::FlagBits-1:0]   vtx_flags_o,
-  // Performance counters (§10; sim/unit_io.hpp UnitCounters): counter k (tess_pkg::ctr_e) at
+  // Performance counters (§10; sim/values/unit_io.hpp UnitCounters): counter k (tess_pkg::ctr_e) at
   // [k CtrW +: CtrW], INT block i's busy cycles at k = CtrIntBusy + i
   output logic [NumCtr*CtrW-1:0]          perf_ctr_o
 );
@@ -276,7 +276,7 @@ module tess_unit #(
     assign perf_ctr_o[k*CtrW +: CtrW] = ctr_q;
   end
 
-  // The configurations sim::UnitConfig accepts (sim/params.cpp, UnitConfig::validate); the RTL
+  // The configurations sim::UnitConfig accepts (sim/config/params.cpp, UnitConfig::validate); the RTL
   // is verified in no other.
   `TESS_ASSERT_PARAM(CoordIntBitsRange_A, CoordIntBits >= 1 && CoordIntBits <= 8)
   `TESS_ASSERT_PARAM(CoordFracBitsRange_A, CoordFracBits >= 8 && CoordFracBits <= 26)

@@ -63,7 +63,7 @@ sim::HardwareConfig VariantSpec::config() const {
 void check_config(const RtlUnit& unit, const sim::UnitConfig& cfg) {
   const sim::UnitConfig rtl = sim::with_hardware(unit.config(), cfg);  // the run's workload and environment
   const std::string where = "RTL variant " + unit.variant();
-  // Every parameter that is a parameter of tess_unit (sim/params.cpp) must match the build.
+  // Every parameter that is a parameter of tess_unit (sim/config/params.cpp) must match the build.
   for (const sim::ParamSpec& p : sim::unit_params()) {
     if (!p.rtl) continue;
     const nlohmann::json have = p.get(rtl), want = p.get(cfg);

@@ -1,5 +1,5 @@
 // One C++ interface over every Verilated configuration of the unit (rtl/CMakeLists.txt), with
-// the same lock-step boundary as the cycle model (sim/unit_io.hpp): drive one cycle's inputs,
+// the same lock-step boundary as the cycle model (sim/values/unit_io.hpp): drive one cycle's inputs,
 // clock, read the registered outputs. docs/rtl.md lists the variants.
 #pragma once
 

@@ -199,7 +199,7 @@ class VerilatedUnit final : public RtlUnit {
     return v;
   }
 
-  // Every registry row with an RTL counter (sim/blocks/counter_registry.hpp), read from the
+  // Every registry row with an RTL counter (sim/base/counter_registry.hpp), read from the
   // counter bus perf_ctr_o at its rtl_counter_index (tess_pkg::ctr_e); rows without one stay 0
   // (the GPE's classes, cpg wait_gpe: the RTL's CPG is dedicated).
   sim::UnitCounters counters() const override {
