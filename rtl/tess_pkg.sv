@@ -83,6 +83,7 @@ package tess_pkg;
     CtrTriIn,               // triangles accepted at the input
     CtrVtxOut,              // vertices accepted by the GPE
     CtrTriStalls,           // triangles refused (input back-pressure)
+    CtrVtxStalls,           // vertices refused by the GPE (output back-pressure)
     CtrTeContextLimited,
     CtrTeIntLimited,
     CtrTeBusy,

@@ -254,6 +254,7 @@ module tess_unit #(
   assign ctr_inc[tess_pkg::CtrTriIn]            = tri_push;
   assign ctr_inc[tess_pkg::CtrVtxOut]           = vtx_pop;
   assign ctr_inc[tess_pkg::CtrTriStalls]        = tri_valid_i && !tri_ready_o;
+  assign ctr_inc[tess_pkg::CtrVtxStalls]        = vtx_valid_o && !vtx_ready_i;
   assign ctr_inc[tess_pkg::CtrTeContextLimited] = te_ctx_limited;
   assign ctr_inc[tess_pkg::CtrTeIntLimited]     = te_int_limited;
   assign ctr_inc[tess_pkg::CtrTeBusy]           = te_busy;

@@ -41,7 +41,9 @@
   X(Run, VerticesOut, vertices_out, "vertices", CtrVtxOut, 2, "",                                      \
     "vertices the GPE accepted (vtx_valid and vtx_ready)")                                                 \
   X(Run, TriStalls, tri_stalls, "cycles", CtrTriStalls, 3, "",                                         \
-    "cycles a triangle was offered and refused (tri_valid, TRI FIFO full): the unit's back-pressure on its input")
+    "cycles a triangle was offered and refused (tri_valid, TRI FIFO full): the unit's back-pressure on its input") \
+  X(Run, VtxStalls, vtx_stalls, "cycles", CtrVtxStalls, 4, "",                                         \
+    "cycles a vertex was offered and refused (vtx_valid, vtx_ready low): the geometry engine's back-pressure on the unit")
 
 #define TESSIM_INT_CLASSES(X)                                                           \
   X(Int, Busy, busy, "cycles", CtrIntBusy, 0, "", "issued an op this cycle")       \

@@ -21,7 +21,7 @@ constexpr RunEvents run_event(RunCounter c) { return RunEvents{1} << static_cast
 
 // A cycle's handshakes at the unit's boundary and the run counters they increment: a triangle
 // pushed into the TRI FIFO (triangles_in) or offered and refused (tri_stalls), a vertex popped
-// from the VTX FIFO (vertices_out). One definition for sim::Unit and the unit without TE of
+// from the VTX FIFO (vertices_out) or offered and refused (vtx_stalls). One definition for sim::Unit and the unit without TE of
 // evaluation gpe (GeEvaluationUnit), whose boundaries are the same.
 struct BoundaryCycle {
   bool tri_push = false;
@@ -33,7 +33,8 @@ constexpr BoundaryCycle boundary_cycle(const UnitInputs& in, bool tri_fifo_full,
   const bool vtx_pop = in.vtx_ready && !vtx_fifo_empty;
   return {tri_push, vtx_pop,
           (tri_push ? run_event(RunCounter::TrianglesIn) : 0) | (vtx_pop ? run_event(RunCounter::VerticesOut) : 0) |
-              (in.tri_valid && !tri_push ? run_event(RunCounter::TriStalls) : 0)};
+              (in.tri_valid && !tri_push ? run_event(RunCounter::TriStalls) : 0) |
+              (!vtx_fifo_empty && !in.vtx_ready ? run_event(RunCounter::VtxStalls) : 0)};
 }
 
 // Per cycle it only increments a few array entries (this runs every simulated cycle); the

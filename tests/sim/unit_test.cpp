@@ -471,6 +471,31 @@ TEST(UnitStatistics, ClassesAddUpPerBlock) {
   }
 }
 
+// vtx_stalls counts the cycles the unit offers a vertex the geometry engine refuses. A GE that
+// takes one vertex every cycle refuses none; a GE of K cycles per vertex is busy for K - 1
+// cycles after each vertex it takes, and when it is the bottleneck a vertex waits in nearly all
+// of them.
+TEST(UnitStatistics, VtxStallsAreTheCyclesAnOfferedVertexWaits) {
+  struct Watch : CycleObserver {
+    bool on_cycle(const Unit&, const GpeCycle&) override { return true; }
+  };
+  const Mesh mesh = bumpy_sphere(1);
+  EXPECT_EQ(simulate(mesh, config(2, 4, 1, 1, 4)).unit.vtx_stalls, 0u);
+  for (int k : {8, 16}) {
+    const UnitConfig cfg = config(4, 4, 1, k, 4);
+    Watch watch;
+    SimHooks hooks;
+    hooks.observers.push_back(&watch);
+    const SimResult r = simulate(mesh, cfg, hooks);
+    const std::uint64_t busy_after = static_cast<std::uint64_t>(k - 1) * r.unit.vertices_out;
+    EXPECT_LE(r.unit.vtx_stalls, busy_after) << "K " << k;
+    EXPECT_GE(r.unit.vtx_stalls, busy_after * 8 / 10) << "K " << k;
+    EXPECT_LE(r.unit.vtx_stalls + r.unit.vertices_out, r.unit.cycles) << "K " << k;
+    // The fast-forwarded run counts the same refusals.
+    EXPECT_EQ(simulate(mesh, cfg).unit.vtx_stalls, r.unit.vtx_stalls) << "K " << k;
+  }
+}
+
 // The host offers a triangle in every cycle until the last one is taken, so every cycle up to
 // that one either takes a triangle or refuses it: tri_stalls = last push cycle + 1 - triangles_in.
 TEST(UnitStatistics, TriStallsAreTheCyclesAnOfferedTriangleWaits) {
