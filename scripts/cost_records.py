@@ -128,8 +128,8 @@ def cost(params, cache=MODULES, rtl_dir=REPO / "rtl", jobs=2, xilinx=True, requi
     return result
 
 
-def read_list(path=LIST):
-    return json.loads(Path(path).read_text())["configurations"]
+def read_list(path=None):
+    return json.loads(Path(path or LIST).read_text())["configurations"]
 
 
 def study_configurations(tessim):
@@ -176,11 +176,14 @@ def cmd_list(args):
     return 0
 
 
-def current_results(cache, require):
-    """(params, stored composed result or None) for every listed configuration, current RTL."""
+def current_results(cache, require, used_by=None):
+    """(params, stored composed result or None) for every listed configuration, current RTL (or
+    those that a file of `used_by` uses)."""
     yosys, digest = yosys_cost.yosys_version(), sources_digest()
     out = []
     for c in read_list():
+        if used_by and not set(used_by) & set(c["used_by"]):
+            continue
         path = composed_dir(cache) / f"{composed_key(c['params'], True, yosys=yosys, digest=digest)}.json"
         out.append((c["params"], load_composed(path, cache), path))
     if require:
@@ -193,8 +196,8 @@ def current_results(cache, require):
 
 def cmd_record(args):
     start = time.monotonic()
-    todo = [p for p, r, _ in current_results(MODULES, False) if r is None]
-    print(f"cost_records.py: {len(read_list()) - len(todo)} configurations recorded, {len(todo)} to compose",
+    todo = [p for p, r, _ in current_results(MODULES, False, args.used_by) if r is None]
+    print(f"cost_records.py: {len(todo)} configurations to compose",
           file=sys.stderr, flush=True)
     yosys_cost.elaborate_all(todo, jobs=args.jobs)
     n = yosys_cost.synthesize_missing(todo, MODULES, jobs=args.jobs, log=sys.stderr)
@@ -227,11 +230,12 @@ def cmd_prune(args):
 
 def cmd_check(args):
     try:
-        results = current_results(MODULES, True)
+        results = current_results(MODULES, True, args.used_by)
     except yosys_cost.CostError as e:
         print(f"cost_records.py: error: {e}", file=sys.stderr)
         return 1
-    print(f"cost_records.py: all {len(results)} listed configurations recorded for the current RTL")
+    which = f"used by {', '.join(args.used_by)}" if args.used_by else "listed"
+    print(f"cost_records.py: all {len(results)} configurations {which} recorded for the current RTL")
     return 0
 
 
@@ -241,13 +245,15 @@ def main(argv):
     p = sub.add_parser("list", help="the configurations the committed study files cost")
     p.add_argument("--tessim", default=str(REPO / "build" / "bin" / "tessim"))
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--write", action="store_true", help=f"write {LIST.relative_to(REPO)}")
-    g.add_argument("--check", action="store_true", help=f"fail unless {LIST.relative_to(REPO)} is current")
+    g.add_argument("--write", action="store_true", help="write docs/results/costs/configurations.json")
+    g.add_argument("--check", action="store_true", help="fail unless docs/results/costs/configurations.json is current")
     p = sub.add_parser("record", help="compose and store every listed configuration of the current RTL")
     p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--used-by", nargs="+", metavar="FILE", help="only the configurations these files use")
     p = sub.add_parser("prune", help="delete records no listed configuration of the current RTL uses")
     p.add_argument("--dry-run", action="store_true")
-    sub.add_parser("check", help="every listed configuration recorded for the current RTL")
+    p = sub.add_parser("check", help="every listed configuration recorded for the current RTL")
+    p.add_argument("--used-by", nargs="+", metavar="FILE", help="only the configurations these files use")
     args = ap.parse_args(argv)
     return {"list": cmd_list, "record": cmd_record, "prune": cmd_prune, "check": cmd_check}[args.command](args)
 
