@@ -14,6 +14,7 @@
 #include "model/mesh_io.hpp"
 #include "rtl/verilated/rtl_unit.hpp"
 #include "sim/values/host.hpp"
+#include "tests/support/rtl_build_config.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace tessim::cosim {
@@ -241,22 +242,13 @@ std::map<std::string, int> vcd_signals(const std::filesystem::path& vcd, std::ve
 
 TEST(CosimWave, ExplicitWindowOfAPassingRunWithAMatchingLayout) {
   tessim::testing::TempDir dir;
-  struct Build {
-    const char* name;
-    int n, latency, contexts;
-    sim::CpgVariant cpg;
-  };
-  for (const Build b : {Build{"n2", 2, 1, 4, {}}, Build{"n3_lat3", 3, 3, 6, {3, 5, 2, 1}}}) {
-    CosimOptions o = options(b.n, 0.2, 2, 7);
-    o.variant = b.name;
-    o.unit.int_latency = b.latency;
-    o.unit.te_contexts = b.contexts;
-    o.unit.cpg = b.cpg;
-    o.unit.cpg_tags = b.n == 3 ? 1 : 0;
-    o.unit.format.alpha_bits = b.n == 3 ? 8 : 0;
+  for (const char* name : {"n2", "n3_lat3"}) {
+    CosimOptions o = options(2, 0.2, 2, 7);
+    o.variant = name;
+    o.unit = tessim::testing::with_rtl_build(o.unit, name);
     const auto stream = random_triangles(6, 7, o.unit.format, 3);
     for (const char* ext : {".fst", ".vcd"}) {
-      o.wave = dir.path() / (std::string(b.name) + ext);
+      o.wave = dir.path() / (std::string(name) + ext);
       o.wave_cycles = WaveWindow{100, 160};
       const CosimReport r = run_cosim(stream, o);
       expect_pass(r, o);
@@ -276,7 +268,7 @@ TEST(CosimWave, ExplicitWindowOfAPassingRunWithAMatchingLayout) {
       for (std::string line; std::getline(layout, line);) {
         if (line.rfind("tess.", 0) != 0) continue;
         ++listed;
-        EXPECT_TRUE(signals.contains(line)) << b.name << ": " << line << " is not in the dump";
+        EXPECT_TRUE(signals.contains(line)) << name << ": " << line << " is not in the dump";
       }
       EXPECT_GT(listed, 30);
     }
@@ -289,44 +281,33 @@ TEST(CosimWave, ExplicitWindowOfAPassingRunWithAMatchingLayout) {
 // (these builds take tags). n3_lat3 (three lanes, steps that do not divide W) is covered above.
 // The values must not change and the timing must agree.
 TEST(CosimCpgVariants, AgreeInEveryModeUnderBackpressureAndSaturation) {
-  struct Build {
-    const char* name;
-    int n;
-    sim::CpgVariant cpg;
-    int alpha_bits;
-  };
-  for (const Build b : {Build{"n1_r4", 1, {1, 4, 3}, 1}, Build{"n2_l3r8", 2, {3, 8, 2, 1}, 8},
-                        Build{"n4_l3r24", 4, {3, 24, 5, 1}, 16}}) {
+  for (const char* name : {"n1_r4", "n2_l3r8", "n4_l3r24"}) {
     for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
       for (const Backpressure bp : {Backpressure{"none", 0.0, 1}, Backpressure{"random", 0.3, 2}}) {
         for (const bool tagged : {false, true}) {
-          CosimOptions o = options(b.n, bp.stall, bp.gpe_cycles, 61);
-          o.variant = b.name;
-          o.unit.cpg = b.cpg;
-          o.unit.cpg_tags = 1;
-          o.unit.format.alpha_bits = b.alpha_bits;
+          CosimOptions o = options(2, bp.stall, bp.gpe_cycles, 61);
+          o.variant = name;
+          o.unit = tessim::testing::with_rtl_build(o.unit, name);
           o.unit.normals = mode;
           const auto stream = random_triangles(24, o.seed, o.unit.format, 6, 0.1, 1.0, tagged);
           const CosimReport r = run_cosim(stream, o);
-          SCOPED_TRACE(std::string(b.name) + " " + std::string(to_string(mode)) + " " + bp.name +
+          SCOPED_TRACE(std::string(name) + " " + std::string(to_string(mode)) + " " + bp.name +
                        (tagged ? " tagged" : " plain"));
           expect_pass(r, o);
           EXPECT_EQ(r.vertices, expected_vertices(stream));
           if (tagged) {
-            EXPECT_GT(r.model_counters.cpg[sim::CpgClass::Busy], 24u * sim::cpg_cycles(mode, o.unit.format, b.cpg));
+            EXPECT_GT(r.model_counters.cpg[sim::CpgClass::Busy], 24u * sim::cpg_cycles(mode, o.unit.format, o.unit.cpg));
           }
         }
       }
       for (const bool tagged : {false, true}) {
-        CosimOptions o = options(b.n, 0.0, 1, 5);
-        o.variant = b.name;
-        o.unit.cpg = b.cpg;
-        o.unit.cpg_tags = 1;
-        o.unit.format.alpha_bits = b.alpha_bits;
+        CosimOptions o = options(2, 0.0, 1, 5);
+        o.variant = name;
+        o.unit = tessim::testing::with_rtl_build(o.unit, name);
         o.unit.normals = mode;
         const CosimReport r = run_cosim(random_triangles(60, o.seed, o.unit.format, 3, 0.1, 30.0, tagged), o);
         expect_pass(r, o);
-        EXPECT_GT(r.reference.saturated, 0u) << b.name << " " << to_string(mode);
+        EXPECT_GT(r.reference.saturated, 0u) << name << " " << to_string(mode);
       }
     }
   }

@@ -15,6 +15,7 @@
 #include "model/mesh_io.hpp"
 #include "sim/values/cpg.hpp"
 #include "sim/values/host.hpp"
+#include "tests/support/rtl_build_config.hpp"
 
 namespace tessim::cosim {
 namespace {
@@ -82,19 +83,9 @@ TEST(RandomD3D11Cosim, UniformAndD3D11PatchesInterleave) {
 TEST(RandomD3D11Cosim, TagTakingBuildsWithD3D11Patterns) {
   // Builds with other CPG variants and latency 3 (tags on): the pattern rides on the CPG's
   // latch for as long as the CPG takes, tag pass included.
-  struct Build {
-    const char* name;
-    int n, latency, contexts;
-    sim::CpgVariant cpg;
-    int alpha_bits;
-  };
-  for (const Build& b : {Build{"n1_r4", 1, 1, 4, {1, 4, 3}, 1}, Build{"n3_lat3", 3, 3, 6, {3, 5, 2, 1}, 8}}) {
-    CosimOptions o = options(b.name, b.n, NormalMode::Quadratic, 0.2, 21);
-    o.unit.int_latency = b.latency;
-    o.unit.te_contexts = b.contexts;
-    o.unit.cpg = b.cpg;
-    o.unit.cpg_tags = 1;
-    o.unit.format.alpha_bits = b.alpha_bits;
+  for (const char* name : {"n1_r4", "n3_lat3"}) {
+    CosimOptions o = options(name, 2, NormalMode::Quadratic, 0.2, 21);
+    o.unit = tessim::testing::with_rtl_build(o.unit, name);
     std::vector<sim::TriangleFx> stream = random_triangles(40, 21, o.unit.format, 6, 0.1, 1.0, true);
     assign_random_patterns(stream, 21, 16);
     const CosimReport r = run_cosim(stream, o);

@@ -11,30 +11,24 @@
 #include "model/stpn_import.hpp"
 #include "sim/values/cpg.hpp"
 #include "sim/values/host.hpp"
+#include "tests/support/rtl_build_config.hpp"
 
 namespace tessim::cosim {
 namespace {
 
+// The builds that take scalar tags (their parameters from rtl/builds.json; they also take alpha,
+// unread here: every alpha is 1).
 struct TagBuild {
   const char* name;
-  int n, latency, contexts;
-  sim::CpgVariant cpg;
-  int alpha_bits;  // these builds also take alpha (unread here: every alpha is 1)
 };
-constexpr TagBuild kTagBuilds[] = {{"n1_r4", 1, 1, 4, {1, 4, 3}, 1},
-                                   {"n2_l3r8", 2, 1, 4, {3, 8, 2, 1}, 8},
-                                   {"n3_lat3", 3, 3, 6, {3, 5, 2, 1}, 8},
-                                   {"n4_l3r24", 4, 1, 4, {3, 24, 5, 1}, 16}};
+constexpr TagBuild kTagBuilds[] = {{"n1_r4"}, {"n2_l3r8"}, {"n3_lat3"}, {"n4_l3r24"}};
+
+int int_blocks(const TagBuild& b) { return tessim::testing::with_rtl_build({}, b.name).int_blocks; }
 
 CosimOptions tag_options(const TagBuild& b, NormalMode mode, double stall, std::uint64_t seed) {
   CosimOptions o;
   o.variant = b.name;
-  o.unit.int_blocks = b.n;
-  o.unit.int_latency = b.latency;
-  o.unit.te_contexts = b.contexts;
-  o.unit.cpg = b.cpg;
-  o.unit.cpg_tags = 1;
-  o.unit.format.alpha_bits = b.alpha_bits;
+  o.unit = tessim::testing::with_rtl_build(o.unit, b.name);
   o.unit.normals = mode;
   o.unit.gpe_stall_prob = stall;
   o.unit.gpe_cycles = 2;
@@ -62,7 +56,7 @@ TEST(CosimStpn, TaggedRealMeshesAgreeForEveryBuildAndMode) {
   for (const char* path : {"/usr/share/assimp/models/Collada/Cinema4D.dae", "/usr/share/assimp/models/OBJ/box.obj"}) {
     for (const TagBuild& b : kTagBuilds) {
       for (const NormalMode mode : {NormalMode::Quadratic, NormalMode::Reflect, NormalMode::Linear}) {
-        const CosimOptions o = tag_options(b, mode, 0.3, 17 + static_cast<std::uint64_t>(b.n));
+        const CosimOptions o = tag_options(b, mode, 0.3, 17 + static_cast<std::uint64_t>(int_blocks(b)));
         std::size_t tagged = 0;
         const auto stream = tagged_stream(path, o.unit.format, 2, &tagged);
         ASSERT_GT(tagged, 0u) << path << ": the ST-mesh must have tagged triangles";
@@ -73,8 +67,8 @@ TEST(CosimStpn, TaggedRealMeshesAgreeForEveryBuildAndMode) {
         EXPECT_GT(r.reference.scalar_tagged, 0u) << "tagged vertices reach the reference check";
         // The tag pass ran: the copies together were busy for more than the plain C + 1 per
         // triangle (a busy cycle has at most Mc copies at work).
-        const std::uint64_t plain = stream.size() * static_cast<std::uint64_t>(sim::cpg_cycles(mode, o.unit.format, b.cpg) + 1);
-        EXPECT_GT(r.model_counters.cpg[sim::CpgClass::Busy] * static_cast<std::uint64_t>(b.cpg.copies), plain);
+        const std::uint64_t plain = stream.size() * static_cast<std::uint64_t>(sim::cpg_cycles(mode, o.unit.format, o.unit.cpg) + 1);
+        EXPECT_GT(r.model_counters.cpg[sim::CpgClass::Busy] * static_cast<std::uint64_t>(o.unit.cpg.copies), plain);
         if (!r.passed) return;
       }
     }
@@ -87,7 +81,7 @@ TEST(CosimStpn, RandomTagsAgreeOnManySeeds) {
   for (const TagBuild& b : kTagBuilds) {
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
       const NormalMode mode = seed % 3 == 0 ? NormalMode::Linear : seed % 3 == 1 ? NormalMode::Quadratic : NormalMode::Reflect;
-      const CosimOptions o = tag_options(b, mode, 0.3, seed * 104729 + static_cast<std::uint64_t>(b.n));
+      const CosimOptions o = tag_options(b, mode, 0.3, seed * 104729 + static_cast<std::uint64_t>(int_blocks(b)));
       const auto stream = random_triangles(30, o.seed, o.unit.format, 4, 0.1, 1.0, true);
       const CosimReport r = run_cosim(stream, o);
       SCOPED_TRACE(std::string(b.name) + " seed " + std::to_string(seed));

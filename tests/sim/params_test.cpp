@@ -176,8 +176,8 @@ TEST(Schema, IntOpsAndStatistics) {
   const std::string rtl((std::istreambuf_iterator<char>(sv)), std::istreambuf_iterator<char>());
   for (const json& o : s["statistics"]["vertex_outputs"])
     EXPECT_NE(rtl.find(" " + o["port"].get<std::string>() + ","), std::string::npos) << o;
-  // The run counters (cycles, triangles_in, vertices_out, tri_stalls), INT busy, the TE and CPG classes.
-  EXPECT_EQ(s["statistics"]["counters"].size(), 4u + 1u + 11u);
+  // The run counters (cycles, triangles_in, vertices_out, tri_stalls, vtx_stalls), INT busy, the TE and CPG classes.
+  EXPECT_EQ(s["statistics"]["counters"].size(), 5u + 1u + 11u);
   EXPECT_EQ(s["statistics"]["classes"]["gpe"], json({"busy", "stalled", "cpg", "starved"}));
 }
 
