@@ -17,7 +17,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import yosys_cost  # noqa: E402
-import cost_records  # noqa: E402  (composed results kept per configuration and RTL)
+import cost_records  # noqa: E402
+import doc_block  # noqa: E402  (the marked block of a document)
 
 BEGIN = "<!-- cost-tables:begin (scripts/cost_tables.py --write docs/rtl.md) -->"
 END = "<!-- cost-tables:end -->"
@@ -73,22 +74,8 @@ def main(argv):
     if not target:
         sys.stdout.write(text)
         return 0
-    doc = Path(target).read_text()
-    if BEGIN not in doc or END not in doc:
-        print(f"cost_tables.py: error: {target} has no {BEGIN} ... {END} block", file=sys.stderr)
-        return 1
-    head, rest = doc.split(BEGIN, 1)
-    current, tail = rest.split(END, 1)
-    block = "\n" + text
-    if args.check:
-        if current != block:
-            print(f"cost_tables.py: {target}: the cost tables differ from the records; "
-                  f"run scripts/cost_tables.py --write {target}", file=sys.stderr)
-            return 1
-        print(f"cost_tables.py: {target}: cost tables current")
-        return 0
-    Path(target).write_text(head + BEGIN + block + END + tail)
-    return 0
+    return doc_block.replace_or_check(target, BEGIN, END, text, bool(args.check), "cost_tables.py",
+                                      "the cost tables of the records", f"scripts/cost_tables.py --write {target}")
 
 
 if __name__ == "__main__":

@@ -21,6 +21,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import sweep  # noqa: E402
 import yosys_cost  # noqa: E402  (tess_pkg's defaults)
+import doc_block  # noqa: E402  (the marked block of a document)
 
 REPO = Path(__file__).resolve().parent.parent
 BUILDS_JSON = REPO / "rtl" / "builds.json"
@@ -147,22 +148,8 @@ def table_main(a):
     if not target:
         sys.stdout.write(text)
         return 0
-    doc = Path(target).read_text()
-    if doc.count(BEGIN) != 1 or doc.count(END) != 1:
-        print(f"rtl_builds.py: error: {target} has no single {BEGIN} ... {END} block", file=sys.stderr)
-        return 1
-    head, rest = doc.split(BEGIN, 1)
-    current, tail = rest.split(END, 1)
-    block = "\n" + text
-    if a.check:
-        if current != block:
-            print(f"rtl_builds.py: {target}: the build table differs from rtl/builds.json; "
-                  f"run scripts/rtl_builds.py table --write {target}", file=sys.stderr)
-            return 1
-        print(f"rtl_builds.py: {target}: build table current")
-        return 0
-    Path(target).write_text(head + BEGIN + block + END + tail)
-    return 0
+    return doc_block.replace_or_check(target, BEGIN, END, text, a.check, "rtl_builds.py", "the build table of rtl/builds.json",
+                                      f"scripts/rtl_builds.py table --write {target}")
 
 
 def main(argv):
