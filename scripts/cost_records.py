@@ -23,7 +23,7 @@ composed again from its records. A composed result is used only while every reco
     record   composes every listed configuration of the current RTL (synthesizing the records it
              lacks, `--jobs` Yosys processes at a time) and stores the composed results
     prune    deletes the module records and composed results that no listed configuration of the
-             current RTL uses (refuses while a listed configuration is not recorded)
+             current RTL uses (a configuration not composed yet keeps the records it has)
     check    fails, naming them, unless every listed configuration has a composed result of the
              current RTL whose records are all present
 """
@@ -209,13 +209,15 @@ def cmd_record(args):
 
 
 def cmd_prune(args):
-    try:
-        results = current_results(MODULES, True)
-    except yosys_cost.CostError as e:
-        print(f"cost_records.py: error: {e}", file=sys.stderr)
-        return 1
-    keep_records = {r["key"] for _, result, _ in results for r in result["records"]}
-    keep_composed = {path.name for _, _, path in results}
+    results = current_results(MODULES, False)
+    keep_records = {r["key"] for _, result, _ in results if result for r in result["records"]}
+    # A configuration not composed yet keeps whatever records of it are stored (its elaboration
+    # names them): pruning never deletes work that `record` would redo.
+    unrecorded = [params for params, result, _ in results if result is None]
+    yosys_cost.elaborate_all(unrecorded, jobs=args.jobs)
+    for params in unrecorded:
+        keep_records |= yosys_cost.record_keys(params)
+    keep_composed = {path.name for _, result, path in results if result}
     stale = [p for p in sorted(MODULES.glob("*.json")) if p.stem not in keep_records]
     stale += [p for p in sorted(composed_dir(MODULES).glob("*.json")) if p.name not in keep_composed]
     size = sum(p.stat().st_size for p in stale)
@@ -252,6 +254,7 @@ def main(argv):
     p.add_argument("--used-by", nargs="+", metavar="FILE", help="only the configurations these files use")
     p = sub.add_parser("prune", help="delete records no listed configuration of the current RTL uses")
     p.add_argument("--dry-run", action="store_true")
+    p.add_argument("--jobs", type=int, default=2)
     p = sub.add_parser("check", help="every listed configuration recorded for the current RTL")
     p.add_argument("--used-by", nargs="+", metavar="FILE", help="only the configurations these files use")
     args = ap.parse_args(argv)

@@ -641,6 +641,18 @@ def synthesize_missing(param_sets, cache, rtl_dir=REPO / "rtl", jobs=2, xilinx=T
     return len(todo)
 
 
+def record_keys(params, rtl_dir=REPO / "rtl", xilinx=True):
+    """The keys of every record the configuration is composed of, whether stored or not (an
+    elaboration, no synthesis)."""
+    defaults = package_defaults(rtl_dir)
+    params = {k: int(v) for k, v in params.items() if int(v) != defaults.get(k)}
+    yosys = yosys_version()
+    with tempfile.TemporaryDirectory(prefix="tessim-cost-") as tmp:
+        modules = elaborate(rtl_dir, params, tmp)
+        return {record_key(record_text(modules, name)[0], yosys, xilinx)
+                for name in instance_counts(modules, top_name(modules))}
+
+
 def cost(params, cache, rtl_dir=REPO / "rtl", jobs=2, xilinx=True, require_cached=False, log=None):
     """Composed cost of tess_unit with `params` (tess_unit parameter -> value). Synthesizes the
     records the cache lacks (or raises CostError naming them with require_cached)."""
