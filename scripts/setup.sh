@@ -32,6 +32,8 @@ FULL_PACKAGES=(
   libgtest-dev libgmock-dev     # unit tests
   libbenchmark-dev              # microbenchmarks
   yosys                         # synthesis for hardware cost
+  qflow-tech-osu018             # OSU 0.18 um standard cells (Liberty with timing and power): silicon cost (scripts/silicon.py)
+  opensta                       # OpenSTA: static timing of the cell-mapped netlists
   iverilog                      # 4-state simulation: the RTL's X checks fire on an X (tests/rtl/x_check_test.sh)
   python3-matplotlib python3-numpy  # plots (run with /usr/bin/python3)
   python3-distributed           # sweep.py --scheduler: points on a Dask cluster
