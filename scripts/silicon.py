@@ -34,6 +34,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import cost_records  # noqa: E402  (the RTL sources' digest of a composed result)
 import yosys_cost  # noqa: E402  (elaboration, records' text, instance counts, path composition)
 import yosys_stat  # noqa: E402
 
@@ -437,15 +438,42 @@ def synthesize(jobs_by_key, lib, cache, jobs=2, log=None):
         list(pool.map(work, sorted(jobs_by_key, key=lambda k: -len(jobs_by_key[k][2]))))
 
 
-# Reported blocks, as in scripts/yosys_cost.py: the unit, the CPG (its copies together), one INT block.
-BLOCKS = yosys_cost.BLOCKS
+# Reported blocks: those of scripts/yosys_cost.py (the unit, the CPG with its copies together, one
+# INT block) and the TE with its INT blocks, whose loop through the INT blocks is the path the
+# INT-block count and latency act on.
+BLOCKS = {**yosys_cost.BLOCKS, "tess_te": False}
+
+
+def composed_key(params, lib, versions, rtl_dir=REPO / "rtl"):
+    """A configuration's composed result is stored under the RTL sources (comments aside), the
+    parameters, the library and everything a record's key holds but the record's text."""
+    ident = {"schema": RECORD_SCHEMA, "library": lib.digest, "map": MAP_SCRIPT, "sta": STA_HEADER,
+             "delay_ps": DELAY_TARGET_PS, "drive": DRIVING_CELL, "load_pf": OUTPUT_LOAD_PF, "untimed": UNTIMED_PORTS,
+             "blocks": sorted(BLOCKS), "sources": cost_records.sources_digest(rtl_dir), "params": params, **versions}
+    return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
 
 
 def cost(params, cache=CACHE, rtl_dir=REPO / "rtl", jobs=2, require_cached=False, log=None, liberty=LIBERTY):
-    """Silicon cost of tess_unit with `params`: area, leakage, clock, per block and per record."""
+    """Silicon cost of tess_unit with `params`: area, leakage, clock, per block and per record.
+    A stored composed result of the current RTL (beside the records) is used while every record
+    it names is present; otherwise the configuration is elaborated and composed, and stored."""
     params = configuration(params, rtl_dir)
     versions = tool_versions()
     lib = Library(liberty)
+    stored = Path(cache).parent / "silicon-configurations" / f"{composed_key(params, lib, versions, rtl_dir)}.json"
+    if stored.exists():
+        result = json.loads(stored.read_text())
+        if all(record_path(cache, r["key"]).exists() for r in result["records"]):
+            return result
+    result = compose_configuration(params, lib, versions, cache, rtl_dir, jobs, require_cached, log)
+    stored.parent.mkdir(parents=True, exist_ok=True)
+    partial = stored.with_name(stored.name + ".tmp")
+    partial.write_text(json.dumps(dict(result, synthesized=0), indent=1, sort_keys=True) + "\n")
+    partial.replace(stored)
+    return result
+
+
+def compose_configuration(params, lib, versions, cache, rtl_dir, jobs, require_cached, log):
     modules, top, counts, jobs_of = plan(params, lib, versions, rtl_dir)
     missing = {jobs_of[n][2]: (modules[n].base, n, jobs_of[n][0], jobs_of[n][1]) for n in counts
                if not record_path(cache, jobs_of[n][2]).exists()}

@@ -9,8 +9,9 @@
 3. A mapped record's worst register-to-register path is named by registers of the RTL, and the
    boundary paths use the tags the hierarchy composition joins.
 4. The committed records compose the default configuration: the unit's area is the records' areas
-   times their instance counts, its clock is at least every record's own worst path, and the
-   critical path is named by registers at both ends.
+   times their instance counts, its clock is at least every record's own worst path, the
+   critical path is named by registers at both ends, and the stored composed result is what the
+   records compose now.
 5. OpenSTA's endpoint reports are read as written (a unit of the parser).
 """
 
@@ -138,6 +139,12 @@ def main():
         check("the critical path is named by registers at both ends",
               ends and "(a register)" not in ends["from"] + ends["to"], str(ends))
         check("clock in MHz is 1000 / clock in ns", abs(result["clock_mhz"] * unit["clock_ns"] - 1000) < 0.1)
+        lib = silicon.Library()
+        fresh = silicon.compose_configuration({}, lib, versions, silicon.CACHE, ROOT / "rtl", 1, True, None)
+        check("the stored composed result is what the records compose now",
+              (fresh["area_mm2"], fresh["clock_ns"], fresh["blocks"]["tess_unit"]["critical_path_ends"])
+              == (result["area_mm2"], result["clock_ns"], unit["critical_path_ends"]),
+              f"{fresh['area_mm2']} mm2 {fresh['clock_ns']} ns against {result['area_mm2']} mm2 {result['clock_ns']} ns")
 
     report = """
 Endpoint                                Required  Actual   Slack
