@@ -126,7 +126,8 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
   std::optional<cosim::WaveTemporaries> wave_temporaries;
   if (!a.wave.empty()) {
     cosim::check_wave_path(a.wave);
-    check_output_paths({{"--wave", a.wave}, {"--wave", cosim::gtkw_path(a.wave).string()}});
+    check_output_paths({{"--wave", a.wave}, {"--wave", cosim::gtkw_path(a.wave).string()}, {"--coverage", a.coverage}},
+                       {{"MESH", a.mesh}, {"--config", flags.config_file()}});
     wave_temporaries.emplace(a.wave);
   }
   const sim::UnitConfig cfg = flags.config();  // defaults, --config, the flags given
@@ -256,6 +257,9 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
 
 }  // namespace
 
+// The random triangles are drawn before the run and held in memory (about 200 bytes each).
+constexpr std::size_t kMaxRandomTriangles = 100'000'000;
+
 void register_cosim(CLI::App& app) {
   auto args = std::make_shared<CosimArgs>();
   CLI::App* cmd = app.add_subcommand("cosim", "Lock-step co-simulation of the Verilated RTL against the cycle model");
@@ -263,7 +267,7 @@ void register_cosim(CLI::App& app) {
   CLI::Option* random = cmd->add_option("--random", args->random_count,
                   "Use N random triangles (with degenerate ones; with --cpg-tags 1 also random scalar tags) instead "
                   "of a mesh")
-      ->transform(number_check<std::size_t>("command line", "--random", type_range<std::size_t>()));
+      ->transform(number_check<std::size_t>("command line", "--random", "1.." + std::to_string(kMaxRandomTriangles)));
   cmd->add_option("--random-max-L", args->random_max_L, "Largest factor of the random triangles (1..64)")
       ->transform(number_check<int>("command line", "--random-max-L", "1..64"))
       ->capture_default_str();
@@ -313,8 +317,12 @@ void register_cosim(CLI::App& app) {
     }
     // --random 0 would silently run the mesh instead: an explicit count must be at least 1.
     if (random->count() > 0 && args->random_count == 0)
-      throw InputError("command line", "--random", "'0' is outside 1.." + std::to_string(std::numeric_limits<std::size_t>::max()) +
+      throw InputError("command line", "--random", "'0' is outside 1.." + std::to_string(kMaxRandomTriangles) +
                                                        " (without --random the mesh is run)");
+    if (args->random_count > kMaxRandomTriangles)
+      throw InputError("command line", "--random",
+                       "'" + std::to_string(args->random_count) + "' is outside 1.." + std::to_string(kMaxRandomTriangles) +
+                           " (the triangles are drawn before the run and held in memory)");
     const int status = run(*args, *flags);
     if (status != 0) throw CLI::RuntimeError(status);
   });

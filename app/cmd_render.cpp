@@ -307,7 +307,7 @@ void run_render(const RenderArgs& args) {
     throw InputError(output.string(), "output",
                      "unsupported image format '" + output.extension().string() + "' (use .png or .exr)");
 
-  check_output_paths({{"-o", output.string()}});
+  check_output_paths({{"-o", output.string()}}, {{"MESH", args.mesh}, {"--config", args.config}});
 
   const Mesh mesh = load_mesh(args.mesh);
   bind_silhouette(settings, mesh);

@@ -139,6 +139,12 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   // A trace and the schedule watch one unit cycle by cycle: there is no one unit to watch.
   if (chunks != 1 && !a.trace.empty())
     throw InputError("command line", "--chunks", "cannot be combined with --trace (a trace follows one unit cycle by cycle)");
+  // A chunk's result is one unit's; a system's is its units' counters summed, so merging chunks
+  // of a system would add every unit's cycles together. The system runs its units on threads.
+  if (chunks != 1 && cfg.units > 1)
+    throw InputError("command line", "--chunks",
+                     "cannot be combined with --units " + std::to_string(cfg.units) +
+                         " (a system of units runs its units on threads of its own; use --threads)");
   if (chunks != 1 && a.schedule)
     throw InputError("command line", "--chunks",
                      "cannot be combined with --schedule (the schedule follows one unit cycle by cycle)");
@@ -168,7 +174,8 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
                            (a.errors ? "the GE evaluates in float, and --errors measures the unit's fixed-point output"
                                      : "nothing to trace or schedule cycle by cycle"));
   }
-  check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}});
+  check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}},
+                     {{"MESH", a.mesh}, {"--config", flags.config_file()}});
   std::optional<TessSettings> pattern = a.pattern.settings("sim", cfg.tess_factor);
   if (pattern && cfg.format.bary_bits < 16)
     throw InputError(flags.config_file().empty() ? "command line" : flags.config_file(), "bary_bits",

@@ -46,7 +46,7 @@ void run_stpn_import(const StpnImportArgs& args) {
     throw InputError(args.output, "output",
                      "unsupported extension '" + std::filesystem::path(args.output).extension().string() +
                          "' (an ST-mesh is written as .ply)");
-  check_output_paths({{"-o", args.output}});
+  check_output_paths({{"-o", args.output}}, {{"INPUT", args.mesh}});
 
   StImportOptions options;
   if (args.crease_angle_given) options.crease_angle = args.crease_angle;

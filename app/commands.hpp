@@ -189,12 +189,15 @@ std::string type_range() {
 }
 
 // The outputs a command writes, checked together before any work: distinct paths (each has
-// its own temporary beside it), none a directory. Throws InputError naming the option.
+// its own temporary beside it), none a directory or a loop of symbolic links, and none the same
+// file as one of the command's `inputs` (an output may never overwrite what the run reads).
+// Throws InputError naming the option. Empty paths are options not given.
 struct OutputPath {
   const char* option;
   std::string path;
 };
-void check_output_paths(const std::vector<OutputPath>& outputs);
+using InputPath = OutputPath;
+void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<InputPath>& inputs = {});
 
 // The cycle model and the RTL compute plain PN triangles: a scalar-tagged mesh's tags do not
 // reach them. Prints a warning saying so when `mesh` has tags that change anything.

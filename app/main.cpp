@@ -1,5 +1,8 @@
 // tessim: simulator of a PN-triangle tessellation unit (float reference, cycle model, RTL).
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <iostream>
 #include <exception>
 #include <memory>
 #include <set>
@@ -66,6 +69,18 @@ std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e) {
   return tessim::InputError("command line", element, reason + " (see tessim --help)").what();
 }
 
+// An option given with an empty value ("--stats ''", "-o \"$UNSET\"") is a bad value, never "not
+// given": a script with an unset variable would otherwise lose that output without a word.
+// Checked for every subcommand once its arguments are parsed, before it runs.
+void refuse_empty_values(const CLI::App& sub) {
+  for (const CLI::Option* opt : sub.get_options()) {
+    if (opt->count() == 0 || opt->get_type_size() == 0) continue;  // not given, or a flag
+    for (const std::string& value : opt->results())
+      if (value.empty())
+        throw tessim::InputError("command line", opt->get_name(), "has an empty value (give a value or leave it out)");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -87,6 +102,11 @@ int main(int argc, char** argv) {
   tessim::app::register_cosim(app);
   tessim::app::register_rtlbench(app);
 #endif
+  for (CLI::App* sub : app.get_subcommands({})) sub->parse_complete_callback([sub] { refuse_empty_values(*sub); });
+  if (argc == 1) {  // no command at all: what a new user needs is the list of commands
+    std::fputs(app.help().c_str(), stdout);
+    return std::fflush(stdout) == 0 ? 0 : 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {
@@ -102,6 +122,13 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tessim: internal error: %s\n", e.what());
     return 3;
+  }
+  // Everything a command printed to standard output (summaries, `schema`, `info --json`, ...)
+  // must have reached it: a full disk or a closed pipe is a failed run, not a short one.
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "tessim: error: standard output: cannot write (%s)\n", std::strerror(errno));
+    return 2;
   }
   return 0;
 }

@@ -54,12 +54,25 @@ void warn_tags_lost(const Mesh& mesh, const sim::NumberFormat& format) {
   if (!warning.empty()) std::fprintf(stderr, "tessim: warning: %s\n", printable_text(warning, 960).c_str());
 }
 
-void check_output_paths(const std::vector<OutputPath>& outputs) {
+void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<InputPath>& inputs) {
   namespace fs = std::filesystem;
   std::vector<fs::path> seen;
   const char* stdout_option = nullptr;
   for (const OutputPath& o : outputs) {
     if (o.path.empty()) continue;
+    if (o.path != "-") {
+      std::error_code ec;
+      // resolve_output_path gives up after the kernel's 40 links: still a link, it is a loop.
+      if (fs::is_symlink(fs::symlink_status(resolve_output_path(o.path), ec)))
+        throw InputError(o.path, o.option, "is a loop of symbolic links");
+      for (const InputPath& in : inputs) {
+        if (in.path.empty() || in.path == "-") continue;
+        std::error_code eq;
+        if (fs::exists(o.path, eq) && fs::exists(in.path, eq) && fs::equivalent(o.path, in.path, eq) && !eq)
+          throw InputError(o.path, o.option,
+                           std::string("is the same file as the input ") + in.option + " of this command (it would be overwritten)");
+      }
+    }
     // Standard output, a device or a pipe is written directly (model/base/output_file.hpp): no
     // temporary beside it. Two outputs cannot share standard output or a pipe; /dev/null and
     // other character devices take any number.

@@ -57,6 +57,13 @@ void validate(const SilhouetteSettings& s, const std::string& source) {
   if (!s.enabled) return;
   if (!s.eye_from_camera && !is_finite(s.eye))
     throw InputError(source, "--silhouette", "eye " + format_vec(s.eye) + " is not finite");
+  // The silhouette test takes products of the eye's coordinates (their squares overflow a double
+  // beyond about 1e154, and every edge then came out curved): farther than this is refused.
+  constexpr double kMaxEyeCoordinate = 1e100;
+  if (!s.eye_from_camera && (std::abs(s.eye.x) > kMaxEyeCoordinate || std::abs(s.eye.y) > kMaxEyeCoordinate ||
+                             std::abs(s.eye.z) > kMaxEyeCoordinate))
+    throw InputError(source, "--silhouette",
+                     "eye " + format_vec(s.eye) + " is farther than 1e100 in a coordinate (the test would overflow)");
   if (!(s.beta > 0.0) || !std::isfinite(s.beta))
     throw InputError(source, "--silhouette", "beta " + number(s.beta) + " must be a positive finite number");
 }

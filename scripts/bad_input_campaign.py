@@ -411,8 +411,20 @@ def system_cases(mesh: str) -> list[Case]:
 
 def misc_cases(mesh: str) -> list[Case]:
     cases = [
-        Case("cli", []),
         Case("cli", ["no-such-command"]),
+        # An empty value is a bad value, not "not given".
+        Case("cli", ["sim", mesh, "--stats", ""]),
+        Case("cli", ["sim", mesh, "-o", ""]),
+        Case("cli", ["sim", mesh, "--trace", ""]),
+        Case("cli", ["sim", mesh, "--config", ""]),
+        Case("cli", ["tessellate", mesh, "-o", ""]),
+        Case("cli", ["cosim", mesh, "--wave", ""]),
+        Case("cli", ["cosim", mesh, "--coverage", ""]),
+        Case("cli", ["report", "{data}/stats/object.json", "-o", ""]),
+        Case("cli", ["cosim", "--random", "18446744073709551615"]),
+        Case("cli", ["rtlbench", mesh, "--int", "5"]),
+        Case("cli", ["info", mesh, "--silhouette", "eye=1e155,1e155,1e155"]),
+        Case("cli", ["sim", mesh, "--units", "4", "--chunks", "2", "--stats", "{work}/s.json"]),
         Case("cli", ["sim", "--no-such-option"]),
         Case("cli", ["info"]),
         Case("cli", ["info", "{data}/does_not_exist.ply"]),

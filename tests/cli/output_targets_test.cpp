@@ -428,5 +428,111 @@ TEST(OutputTargets, GtkwaveLayoutNamesItsDumpRelatively) {
   EXPECT_FALSE(contains(layout, dir.path().string())) << "an absolute path in the layout";
 }
 
+// ---------------------------------------------------------------------------------------------
+// Empty values, outputs that are inputs, link loops, a full standard output, no command at all.
+
+TEST(BadInputEmptyValue, AnEmptyValueIsRefusedNotIgnored) {
+  const TempDir dir;
+  const std::string mesh = kCube.string();
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"sim", mesh, "-L", "2", "--stats", ""},
+           {"sim", mesh, "-L", "2", "-o", ""},
+           {"sim", mesh, "-L", "2", "--trace", ""},
+           {"sim", mesh, "-L", "2", "--config", ""},
+           {"tessellate", mesh, "-L", "2", "-o", ""},
+           {"render", mesh, "-L", "2", "-o", ""},
+       }) {
+    const TessimRun r = tessim(args, dir.path());
+    EXPECT_EQ(r.status, 2) << joined(args) << "\n" << r.err;
+    EXPECT_TRUE(contains(r.err, "has an empty value")) << joined(args) << ": " << r.err;
+    EXPECT_EQ(listing(dir.path()), " (empty)") << joined(args);
+  }
+}
+
+TEST(BadOutputIsInput, AnOutputMayNotOverwriteTheInputMesh) {
+  const TempDir dir;
+  fs::copy_file("/usr/share/assimp/models/PLY/cube.ply", dir.path() / "m.ply");
+  fs::create_symlink("m.ply", dir.path() / "alias.ply");
+  const std::string before = slurp(dir.path() / "m.ply");
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"tessellate", "m.ply", "-L", "2", "-o", "m.ply"},
+           {"sim", "m.ply", "-L", "2", "-o", "m.ply"},
+           {"sim", "m.ply", "-L", "2", "-o", "alias.ply"},
+           {"sim", "m.ply", "-L", "2", "--stats", "./m.ply"},
+           {"sim", "m.ply", "-L", "2", "--trace", "alias.ply"},
+       }) {
+    const TessimRun r = tessim(args, dir.path());
+    EXPECT_EQ(r.status, 2) << joined(args) << "\n" << r.err;
+    EXPECT_TRUE(contains(r.err, "is the same file as the input MESH")) << joined(args) << ": " << r.err;
+    EXPECT_EQ(slurp(dir.path() / "m.ply"), before) << joined(args) << ": the input changed";
+  }
+  EXPECT_TRUE(fs::is_symlink(dir.path() / "alias.ply"));
+  EXPECT_EQ(listing(dir.path()), " alias.ply m.ply");
+}
+
+TEST(BadOutputIsInput, AnOutputMayNotOverwriteTheConfiguration) {
+  const TempDir dir;
+  { std::ofstream(dir.path() / "c.json") << "{\"int_blocks\": 2}\n"; }
+  const TessimRun r = tessim({"sim", kCube.string(), "-L", "2", "--config", "c.json", "--stats", "c.json"}, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "is the same file as the input --config")) << r.err;
+  EXPECT_EQ(slurp(dir.path() / "c.json"), "{\"int_blocks\": 2}\n");
+}
+
+TEST(BadOutputLinkLoop, ALoopOfSymbolicLinksIsRefused) {
+  const TempDir dir;
+  fs::create_symlink("b", dir.path() / "a");
+  fs::create_symlink("a", dir.path() / "b");
+  const TessimRun r = tessim({"sim", kCube.string(), "-L", "2", "--stats", "a"}, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "loop of symbolic links")) << r.err;
+  EXPECT_TRUE(fs::is_symlink(dir.path() / "a") && fs::is_symlink(dir.path() / "b")) << "a link was replaced";
+  EXPECT_EQ(listing(dir.path()), " a b");
+}
+
+// Runs `tessim ARGS > /dev/full`: every byte written to standard output fails with ENOSPC.
+int status_with_full_stdout(const std::vector<std::string>& args, std::string* err) {
+  const TempDir scratch;
+  // Appended piece by piece: GCC 12 warns (-Wrestrict) about "literal" + std::string here.
+  std::string command = "exec ";
+  command += quote(binary_under_test());
+  for (const std::string& a : args) {
+    command += ' ';
+    command += quote(a);
+  }
+  command += " >/dev/full 2>";
+  command += quote((scratch.path() / "err").string());
+  command += " </dev/null";
+  const int raw = std::system(command.c_str());
+  *err = slurp(scratch.path() / "err");
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+TEST(BadOutputFullStdout, WhatIsPrintedMustReachStandardOutput) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full on this machine";
+  const TempDir dir;
+  const fs::path stats = write_stats(dir);
+  const std::string mesh = kCube.string();
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"schema"},
+           {"info", mesh, "--json"},
+           {"compare", stats.string(), stats.string()},
+           {"sim", mesh, "-L", "2"},
+           {"pattern", "--outer", "3,2,2", "--inner", "2", "--partitioning", "integer", "--json"},
+       }) {
+    std::string err;
+    EXPECT_EQ(status_with_full_stdout(args, &err), 2) << joined(args) << "\n" << err;
+    EXPECT_TRUE(contains(err, "standard output")) << joined(args) << ": " << err;
+  }
+}
+
+TEST(NoCommand, TessimAloneShowsTheHelp) {
+  const TempDir dir;
+  const TessimRun r = tessim({}, dir.path());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "sim") && contains(r.out, "cosim") && contains(r.out, "--help")) << r.out;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
 }  // namespace
 }  // namespace tessim

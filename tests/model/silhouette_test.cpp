@@ -240,7 +240,17 @@ TEST(SilhouetteMesh, BadSettingsAreRefusedBeforeAnything) {
     s.silhouette.beta = beta;
     EXPECT_THROW(tessellate_mesh(wuson(), s, NormalMode::Quadratic, [&](const PatchView&) { ++calls; }), InputError);
   }
+  // An eye so far away that the test's products overflow (every edge came out curved at 1e155).
+  s.silhouette.beta = 1.0;
+  s.silhouette.eye = glm::dvec3(1e155, 1e155, 1e155);
+  EXPECT_THROW(tessellate_mesh(wuson(), s, NormalMode::Quadratic, [&](const PatchView&) { ++calls; }), InputError);
   EXPECT_EQ(calls, 0);
+  // Far but representable: the same edges as a distant eye in that direction.
+  s.silhouette.eye = glm::dvec3(1e100, 1e100, 1e100);
+  const MeshSilhouette far(wuson(), s.silhouette.eye, 1.0);
+  const MeshSilhouette distant(wuson(), glm::dvec3(1e12, 1e12, 1e12), 1.0);
+  EXPECT_EQ(far.counts().curved, distant.counts().curved);
+  EXPECT_EQ(far.counts().flat, distant.counts().flat);
 }
 
 // ---------------------------------------------------------------------------------------------
