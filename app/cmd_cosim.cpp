@@ -296,12 +296,13 @@ void register_cosim(CLI::App& app) {
                   "Reset both implementations this many times at random cycles: in turn anywhere, inside a D3D11 "
                   "patch's inner rings, with the CPG mid-triangle (0..1000)")
       ->transform(number_check<int>("command line", "--random-resets", "0..1000"));
-  cmd->add_option("--wave", args->wave,
+  CLI::Option* wave = cmd->add_option("--wave", args->wave,
                   "Write a waveform (.fst, or .vcd through gtkwave's fst2vcd) and a gtkwave layout (.gtkw) beside "
                   "it: the cycles before a divergence, or the --wave-window START:END of any run");
   cmd->add_option("--wave-window", args->wave_window,
                   "N: the N cycles before a divergence (1..10000000); START:END: these cycles, passing or not")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(wave);
   cmd->add_flag("--quiet", args->quiet, kQuietHelp);
   cmd->callback([args, flags, random, reset_at]() {
     for (const std::string& list : *reset_at) {

@@ -1,5 +1,6 @@
 // tessim sim: a whole mesh through the cycle model of the unit and its geometry engine;
 // statistics, a human summary, a Perfetto trace, the issue schedule, the tessellated mesh.
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
@@ -145,6 +146,19 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
     throw InputError("command line", "--chunks",
                      "cannot be combined with --units " + std::to_string(cfg.units) +
                          " (a system of units runs its units on threads of its own; use --threads)");
+  // A system's options configure the distributor, the GE's ports and the reassembly buffer of
+  // --units M >= 2: for one unit they would be ignored yet written into the statistics.
+  if (cfg.units == 1) {
+    const nlohmann::json given = flags.overrides();
+    for (const char* key : {"ge_ports", "reorder_slots", "distribution", "dispatch_batch", "reassembly"}) {
+      if (!given.contains(key)) continue;
+      std::string flag = std::string("--") + key;
+      std::replace(flag.begin(), flag.end(), '_', '-');
+      throw InputError("command line", flag, "has no effect on one unit (it configures a system of --units M >= 2)");
+    }
+  }
+  if (!a.trace_window.empty() && a.trace.empty())
+    throw InputError("command line", "--trace-window", "needs --trace (it selects the cycles of the trace)");
   if (chunks != 1 && a.schedule)
     throw InputError("command line", "--chunks",
                      "cannot be combined with --schedule (the schedule follows one unit cycle by cycle)");

@@ -43,8 +43,10 @@ TARGET = 0.9
 def run_point(tessim, point, scratch):
     eye, target = point["camera"]
     cam = f"eye={quality.fmt(eye)},target={quality.fmt(target)},fov={FOV}"
-    params = dict(UNIT, units=point["M"], ge_ports=point["M"], distribution=point["policy"],
-                  reorder_slots=point["R"], reassembly=point["reassembly"])
+    params = dict(UNIT, units=point["M"])
+    if point["M"] > 1:  # tessim refuses a system's options for one unit (they would be ignored)
+        params.update(ge_ports=point["M"], distribution=point["policy"], reorder_slots=point["R"],
+                      reassembly=point["reassembly"])
     # One thread a run: the points run side by side already.
     cmd = [tessim, "sim", quality.MESHES[point["mesh"]], "--quiet", "--threads", "1", "--adaptive", "screen", "--camera", cam,
            "--viewport", SIZE, "--pixels-per-segment", "6"]

@@ -192,6 +192,13 @@ def doc_tables(table, missing=()):
         lines.append(f"| {variant(r)} | {r['area_mm2']:.2f} | {r['area_cpg_mm2']:.2f} | {r['clock_ns']:.2f} "
                      f"| {r['clock_mhz']:.1f} | {r['generic_depth']} | {r['mvertices_per_s_L4'] or '–'} "
                      f"| {r['mvertices_per_s_L16'] or '–'} | `{r['critical_from']}` → `{r['critical_to']}` |")
+    by_cpg = [r for r in table if r["cpg_path_ns"] >= r["clock_ns"]]
+    te = [r["te_path_ns"] for r in table]
+    lines += ["", f"**What sets the clock.** The CPG's path sets it in {len(by_cpg)} of the {len(table)} configurations "
+              f"(from {min(r['cpg_path_ns'] for r in table):.2f} to {max(r['cpg_path_ns'] for r in table):.2f} ns); "
+              f"the TE's loop through an INT block (operand select, the INT block's sum, the result register) takes "
+              f"{min(te):.2f} to {max(te):.2f} ns. With the CPG's path shortened, that loop would allow "
+              f"{1000.0 / max(te):.1f} to {1000.0 / min(te):.1f} MHz."]
     rho = spearman([r["generic_depth"] for r in table], [r["clock_ns"] for r in table])
     lines += ["", f"**Does the generic depth rank the configurations as static timing does?** Over the "
               f"{len(table)} configurations above, Spearman's rank correlation between the generic logic depth "
@@ -225,8 +232,41 @@ def doc_tables(table, missing=()):
                          f"at {fast['clock_mhz']:.1f} MHz, {fast['area_mm2']:.2f} mm² "
                          f"| N = {dense['int_blocks']}, {variant(dense)}: {dense[f'mvertices_per_s_mm2_L{level}']} "
                          f"({dense[f'mvertices_per_s_L{level}']} Mvertices/s, {dense['area_mm2']:.2f} mm²) |")
+    lines += outside_comparison(table)
     lines += flat_comparison()
     return "\n".join(lines) + "\n"
+
+
+def outside_comparison(table, level=16):
+    """The fastest configuration at L = `level` beside the published figures of
+    docs/results/silicon/outside.json: per clock everywhere, absolute rates at 0.18 um only."""
+    cand = [r for r in table if r[f"mvertices_per_s_L{level}"] != ""]
+    if not cand:
+        return []
+    best = max(cand, key=lambda r: r[f"mvertices_per_s_L{level}"])
+    per_vertex = 2.0 * level * level / ((level + 1) * (level + 2))  # a patch's triangles per its vertices
+    vpc = best[f"vertices_per_cycle_L{level}"]
+    chips = json.loads((OUT.parent / "outside.json").read_text())["chips"]
+    lines = ["", f"**Beside other tessellation hardware** (docs/results/silicon/outside.json; this unit at L = {level}, "
+             f"where a patch has {per_vertex:.3f} triangles per vertex it outputs):", "",
+             "| what | node | vertices per clock | triangles per clock | MHz | Mvertices/s | area mm² | kind |",
+             "|---|---|---|---|---|---|---|---|",
+             f"| this unit, N = {best['int_blocks']}, {variant(best)} | 0.18 µm (composed) | {vpc:.3f} "
+             f"| {vpc * per_vertex:.3f} | {best['clock_mhz']:.1f} | {best[f'mvertices_per_s_L{level}']} "
+             f"| {best['area_mm2']:.2f} | fixed function, one unit |"]
+    for c in chips:
+        tpc = c.get("triangles_per_clock")
+        lines.append(f"| {c['name']} | {str(c['node_um']) + ' µm' if 'node_um' in c else '–'} "
+                     f"| {c.get('vertices_per_clock', '–')} | {tpc if tpc is not None else '–'} "
+                     f"| {c.get('clock_mhz', '–')} | {c.get('mvertices_per_s', '–')} | – | {c['kind']} |")
+    kaist = next((c for c in chips if "mvertices_per_s" in c), None)
+    if kaist:
+        units = -(-kaist["mvertices_per_s"] // best[f"mvertices_per_s_L{level}"])
+        lines += ["", f"To match the {kaist['name']}'s {kaist['mvertices_per_s']} Mvertices/s at L = {level}, one unit of "
+                  f"the fastest configuration falls short by {kaist['mvertices_per_s'] / best[f'mvertices_per_s_L{level}']:.1f}×: "
+                  f"at least {int(units)} such units ({int(units) * best['area_mm2']:.0f} mm², if a system of units "
+                  f"scaled linearly), or more vertices per clock from each."]
+    return lines
 
 
 def flat_comparison():

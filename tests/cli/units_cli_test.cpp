@@ -78,5 +78,30 @@ TEST(UnitsCli, RefusesChunksOfASystemOfUnits) {
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "s.json"));
 }
 
+// A system's options with one unit used to be accepted, ignored and written into the statistics
+// (config.ge_ports = 4 with one port's cycles).
+TEST(UnitsCli, RefusesASystemsOptionsForOneUnit) {
+  testing::TempDir dir;
+  for (const std::vector<std::string>& option : std::vector<std::vector<std::string>>{
+           {"--ge-ports", "4"}, {"--reorder-slots", "64"}, {"--distribution", "least_loaded"},
+           {"--dispatch-batch", "2"}, {"--reassembly", "unordered"}}) {
+    std::vector<std::string> args = {"sim", kWuson, "-L", "2", "--stats", "s.json"};
+    args.insert(args.end(), option.begin(), option.end());
+    const auto r = testing::run_tessim(args, dir.path());
+    EXPECT_EQ(r.status, 2) << option[0] << ": " << r.err;
+    EXPECT_NE(r.err.find(option[0] + ": has no effect on one unit"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "s.json"));
+    args.insert(args.end(), {"--units", "2"});  // the same option for a system is taken
+    EXPECT_EQ(testing::run_tessim(args, dir.path()).status, 0) << option[0];
+  }
+}
+
+TEST(UnitsCli, RefusesATraceWindowWithoutATrace) {
+  testing::TempDir dir;
+  const auto r = testing::run_tessim({"sim", kWuson, "-L", "2", "--trace-window", "0:100"}, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--trace-window: needs --trace"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace tessim
