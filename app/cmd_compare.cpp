@@ -3,6 +3,7 @@
 // the ratio B/A and its unit, keys in natural order (histogram bins 0, 1, 2, 10).
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -43,6 +44,11 @@ json read_stats(const std::string& path) {
     throw InputError(path, "statistics", "not the statistics of `tessim sim --stats` (no cycles or config)");
   if (j.contains("schema_version") && !j["schema_version"].is_number_unsigned())
     throw InputError(path, "schema_version", j["schema_version"].dump() + " is not a non-negative integer");
+  // A newer schema may mean other things by the same keys: refused, as `report` refuses it.
+  if (j.contains("schema_version") && j["schema_version"].get<std::uint64_t>() > static_cast<std::uint64_t>(sim::kStatsSchemaVersion))
+    throw InputError(path, "schema_version",
+                     j["schema_version"].dump() + " is newer than this tessim's " +
+                         std::to_string(sim::kStatsSchemaVersion) + " (compare with the tessim that wrote it)");
   if (j.contains("tool")) {
     const json& tool = j["tool"];
     if (!tool.is_object()) throw InputError(path, "tool", tool.dump() + " is not an object");

@@ -270,6 +270,8 @@ void run_render(const RenderArgs& args) {
     throw InputError("command line", "--normals", "the unit has no derivative normals (float reference only)");
   if (!(args.color_max >= 0.0) || !std::isfinite(args.color_max))
     throw InputError("command line", "--color-max", "must be a positive finite number");
+  if (args.color_max > 0.0 && colour == ColourMode::Shaded)
+    throw InputError("command line", "--color-max", "scales a heat map: give --color with a measure to colour by");
   if (colour == ColourMode::Silhouette && !settings.uses_silhouette())
     throw InputError("command line", "--color", "silhouette needs --silhouette or --adaptive silhouette");
   // An adaptive rule with a camera takes the picture from it; the Nyquist rule alone has none.

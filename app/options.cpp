@@ -138,7 +138,9 @@ std::vector<double> parse_numbers(const char* option, const std::string& text) {
     const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
-    if (item.empty() || end != item.c_str() + item.size())
+    // strtod also reads hexadecimal ("0x10" is 16) and "inf"/"nan" words: only decimal is a number here.
+    const bool decimal = item.find_first_not_of("0123456789+-.eE") == std::string::npos;
+    if (item.empty() || end != item.c_str() + item.size() || !decimal)
       throw InputError(kCommandLine, option, "'" + item + "' in '" + text + "' is not a number");
     out.push_back(x);
     if (comma == std::string::npos) break;

@@ -174,5 +174,21 @@ TEST(CompareCli, IntegersExactKeysInNaturalOrderAndFilters) {
   EXPECT_NE(r.out.find("\nconfig.tess_factor,2,9,"), std::string::npos) << r.out;
 }
 
+// A statistics file of a newer schema may mean other things by the same keys: `report` refused
+// it, `compare` compared it anyway.
+TEST(CompareCli, RefusesANewerSchemaVersion) {
+  testing::TempDir dir;
+  const auto a = dir.path() / "a.json", b = dir.path() / "b.json";
+  ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "2", "--stats", a.string()}, dir.path()).status, 0);
+  json j = read_json(a);
+  j["schema_version"] = sim::kStatsSchemaVersion + 96;
+  std::ofstream(b) << j.dump();
+  const auto r = testing::run_tessim({"compare", a.string(), b.string()}, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("schema_version: " + std::to_string(sim::kStatsSchemaVersion + 96) + " is newer"),
+            std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
 }  // namespace
 }  // namespace tessim

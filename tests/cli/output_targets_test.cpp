@@ -526,6 +526,25 @@ TEST(BadOutputFullStdout, WhatIsPrintedMustReachStandardOutput) {
   }
 }
 
+TEST(BadInputNumbers, OnlyDecimalNumbersInSubOptions) {
+  const TempDir dir;
+  for (const char* bad : {"eye=0x10,0,0", "eye=1,2,3,beta=0x10", "eye=1,2,3,beta=inf", "eye=1,nan,3"}) {
+    const TessimRun r = tessim({"info", kCube.string(), "--silhouette", bad}, dir.path());
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, "--silhouette")) << bad << ": " << r.err;
+  }
+  EXPECT_EQ(tessim({"info", kCube.string(), "--silhouette", "eye=1e3,-2.5,+3,beta=0.5"}, dir.path()).status, 0);
+}
+
+TEST(BadInputIgnored, ColorMaxWithoutAHeatMapIsRefused) {
+  const TempDir dir;
+  const TessimRun r =
+      tessim({"render", kCube.string(), "-L", "2", "--size", "64x48", "--color-max", "2", "-o", "o.png"}, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "--color-max: scales a heat map")) << r.err;
+  EXPECT_EQ(listing(dir.path()), " (empty)");
+}
+
 TEST(NoCommand, TessimAloneShowsTheHelp) {
   const TempDir dir;
   const TessimRun r = tessim({}, dir.path());
