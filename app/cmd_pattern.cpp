@@ -184,7 +184,7 @@ void run_pattern(const PatternArgs& args) {
   if (!args.output.empty() && kind != OutputKind::File && extension != ".png") extension = ".svg";
   if (!args.output.empty() && extension != ".svg" && extension != ".png")
     throw InputError(args.output, "output", "unsupported extension '" + output.extension().string() + "' (use .svg or .png)");
-  if (extension == ".png") parse_image_size(args.size, "--size");
+  parse_image_size(args.size, "--size");  // checked for every output: a bad size is never ignored
 
   const D3D11Pattern p = d3d11_tri_pattern(outer, inner, partitioning, *winding);
   if (extension == ".svg") write_svg(pattern_drawing(p, partitioning), output);

@@ -545,6 +545,16 @@ TEST(BadInputIgnored, ColorMaxWithoutAHeatMapIsRefused) {
   EXPECT_EQ(listing(dir.path()), " (empty)");
 }
 
+TEST(BadInputIgnored, ABadPictureSizeIsRefusedForAnSvgToo) {
+  const TempDir dir;
+  std::vector<std::string> args = kPattern;
+  args.insert(args.end(), {"-o", "x.svg", "--size", "0x0"});
+  const TessimRun r = tessim(args, dir.path());
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "--size")) << r.err;
+  EXPECT_EQ(listing(dir.path()), " (empty)");
+}
+
 TEST(NoCommand, TessimAloneShowsTheHelp) {
   const TempDir dir;
   const TessimRun r = tessim({}, dir.path());
