@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -402,8 +403,17 @@ void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
     const std::size_t eq = camera.find('=', start);
     if (eq == std::string::npos) throw InputError(kCommandLine, "--camera", "'" + camera + "' is not key=value,...");
     const std::string key = camera.substr(start, eq - start);
+    // The next ",word=" starts the next item, a known key or not (an unknown one is named below,
+    // not read as a coordinate).
     std::size_t next = camera.size();
-    for (const char* k : {",eye=", ",target=", ",fov="}) next = std::min(next, camera.find(k, eq));
+    for (std::size_t comma = camera.find(',', eq); comma != std::string::npos; comma = camera.find(',', comma + 1)) {
+      std::size_t end = comma + 1;
+      while (end < camera.size() && (std::isalpha(static_cast<unsigned char>(camera[end])) || camera[end] == '_')) ++end;
+      if (end > comma + 1 && end < camera.size() && camera[end] == '=') {
+        next = comma;
+        break;
+      }
+    }
     items.emplace_back(key, camera.substr(eq + 1, next - eq - 1));
     start = next == camera.size() ? next : next + 1;
   }
@@ -438,7 +448,8 @@ TessSettings PatternOptions::settings(const char* command) const {
   s.displace = displace.settings();
   check_tess_factor(command, factor);
   const bool fixed = !outer.empty() || !inner.empty();
-  if (fixed && adaptive.given()) throw InputError(kCommandLine, "--outer", "cannot be combined with --adaptive");
+  if (fixed && adaptive.given())  // name the option given: --inner alone is one too
+    throw InputError(kCommandLine, outer.empty() ? "--inner" : "--outer", "cannot be combined with --adaptive");
   if (!inner.empty() && outer.empty()) throw InputError(kCommandLine, "--inner", "needs --outer");
   adaptive.check_given_alone();
   if (partitioning.empty() && !fixed && !adaptive.given()) {  // the uniform pattern

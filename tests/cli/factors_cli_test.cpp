@@ -79,7 +79,11 @@ TEST(FactorsCli, BadPatternOptionsAreInputErrors) {
       {{"--adaptive", "screen", "--camera", "eye=0,0,0"}, "the eye is the target"},
       {{"--adaptive", "screen", "--camera", "eye=1,2"}, "needs three coordinates"},
       {{"--adaptive", "screen", "--camera", "eye=1,2,3,fov=180"}, "outside (0, 180)"},
-      {{"--adaptive", "screen", "--camera", "eye=1,2,3", "--outer", "1,2,3"}, "cannot be combined with --adaptive"},
+      // An unknown key after the eye is named, not read as a fourth coordinate.
+      {{"--adaptive", "screen", "--camera", "eye=0,0,5,foo=1"}, "unknown key 'foo' (eye, target, fov)"},
+      {{"--adaptive", "screen", "--camera", "eye=1,2,3", "--outer", "1,2,3"}, "--outer: cannot be combined with --adaptive"},
+      // --inner alone is named as itself (it used to be reported as --outer).
+      {{"--adaptive", "screen", "--camera", "eye=1,2,3", "--inner", "3"}, "--inner: cannot be combined with --adaptive"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args{"tessellate", kSphere, "-o", out};
