@@ -86,12 +86,16 @@ void run_info(const InfoArgs& args) {
     return;
   }
 
-  std::printf("file                  %s\n", mesh.source.c_str());
+  // The file name as error messages show it: a newline or ESC in it cannot forge lines.
+  std::printf("file                  %s\n", printable_text(mesh.source, 4096).c_str());
   std::printf("vertices              %zu (identical positions welded)\n", stats.vertices);
+  std::printf("edges                 %zu\n", stats.edges);
   std::printf("triangles             %zu\n", stats.triangles);
   std::printf("bounding box          min (%.9g, %.9g, %.9g)\n", lo.x, lo.y, lo.z);
   std::printf("                      max (%.9g, %.9g, %.9g)\n", hi.x, hi.y, hi.z);
   std::printf("diagonal              %.9g\n", stats.bbox.diagonal());
+  std::printf("half-extent           %.9g (the unit's coordinates times this are mesh units)\n",
+              sim::host_scaling(mesh).half_extent);
   std::printf("normals               %s\n", normal_source(mesh));
   std::printf("degenerate triangles  %zu (zero area)\n", stats.degenerate_triangles);
   std::printf("zero-length edges     %zu\n", stats.zero_length_edges);

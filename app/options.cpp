@@ -139,9 +139,10 @@ std::vector<double> parse_numbers(const char* option, const std::string& text) {
     const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
-    // strtod also reads hexadecimal ("0x10" is 16) and "inf"/"nan" words: only decimal is a number here.
-    const bool decimal = item.find_first_not_of("0123456789+-.eE") == std::string::npos;
-    if (item.empty() || end != item.c_str() + item.size() || !decimal)
+    // strtod also reads hexadecimal ("0x10" is 16, "0x1p4" too): only decimal is a number here
+    // ("nan" and "inf" pass on, to be refused as not finite where that matters).
+    const bool hexadecimal = item.find_first_of("xXpP") != std::string::npos;
+    if (item.empty() || end != item.c_str() + item.size() || hexadecimal)
       throw InputError(kCommandLine, option, "'" + item + "' in '" + text + "' is not a number");
     out.push_back(x);
     if (comma == std::string::npos) break;

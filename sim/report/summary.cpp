@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "model/base/error.hpp"  // printable_text: a file name as error messages show it
 #include "model/pattern.hpp"
 #include "sim/base/counter_registry.hpp"
 #include "sim/run/chunked.hpp"
@@ -90,7 +91,7 @@ std::string summary(const SimResult& r) {
   }
   factors = buf;
   std::snprintf(buf, sizeof buf, "workload %s: %llu triangles, %s, %s normals; GPE K=%d, stall %.2f, seed %llu\n",
-                r.mesh.c_str(), static_cast<unsigned long long>(r.triangles), factors.c_str(),
+                printable_text(r.mesh).c_str(), static_cast<unsigned long long>(r.triangles), factors.c_str(),
                 std::string(to_string(c.normals)).c_str(), c.gpe_cycles, c.gpe_stall_prob,
                 static_cast<unsigned long long>(c.seed));
   s << buf;

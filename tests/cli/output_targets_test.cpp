@@ -555,6 +555,24 @@ TEST(BadInputIgnored, ABadPictureSizeIsRefusedForAnSvgToo) {
   EXPECT_EQ(listing(dir.path()), " (empty)");
 }
 
+// A file name with an escape sequence or a newline is shown as error messages show it: a name
+// cannot recolour the terminal or forge a summary line.
+TEST(Summaries, FileNamesArePrintedEscaped) {
+  const TempDir dir;
+  const std::string name = "a\x1b[31m\nlimit fake.ply";
+  fs::copy_file("/usr/share/assimp/models/PLY/cube.ply", dir.path() / name);
+  for (const auto& args : std::vector<std::vector<std::string>>{{"info", name}, {"sim", name, "-L", "2"}}) {
+    const TessimRun r = tessim(args, dir.path());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_FALSE(contains(r.out, "\x1b")) << args[0] << ": a raw ESC in the summary";
+    EXPECT_FALSE(contains(r.out, "\nlimit fake")) << args[0] << ": a raw newline in the summary";
+    EXPECT_TRUE(contains(r.out, "a\\x1b[31m\\nlimit fake.ply")) << r.out;
+  }
+  const TessimRun info = tessim({"info", name}, dir.path());
+  EXPECT_TRUE(contains(info.out, "edges                 18")) << info.out;
+  EXPECT_TRUE(contains(info.out, "half-extent")) << info.out;
+}
+
 TEST(NoCommand, TessimAloneShowsTheHelp) {
   const TempDir dir;
   const TessimRun r = tessim({}, dir.path());

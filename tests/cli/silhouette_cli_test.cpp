@@ -199,7 +199,7 @@ TEST(SilhouetteCli, BadSilhouettesAreInputErrors) {
       {{"tessellate", kWuson, "-o", out, "--silhouette", "eye=nan,0,5"}, "is not finite"},
       {{"tessellate", kWuson, "-o", out, "--silhouette", "eye=inf,0,5"}, "is not finite"},
       {{"tessellate", kWuson, "-o", out, "--silhouette", "eye=1,2"}, "needs three coordinates"},
-      {{"tessellate", kWuson, "-o", out, "--silhouette", ""}, "is not eye=x,y,z[,beta=B][,blend=off] or camera[,beta=B][,blend=off]"},
+      {{"tessellate", kWuson, "-o", out, "--silhouette", ""}, "--silhouette: has an empty value"},
       {{"tessellate", kWuson, "-o", out, "--silhouette", "camera"}, "'camera' takes the eye of --adaptive"},
       {{"render", kWuson, "-o", out + ".png", "--silhouette", "eye=0,0,5,beta=0"}, "must be a positive finite number"},
       {{"render", kWuson, "-o", out + ".png", "--color", "silhouette"}, "silhouette needs --silhouette"},
