@@ -41,7 +41,7 @@ static std::string system_limit(const SimResult& r) {
   const bool ordered = r.config.reassembly == Reassembly::Ordered;
   std::snprintf(buf, sizeof buf,
                 "%s: ports busy %.1f%%, waiting for %s %.1f%%, for the stream %.1f%%; units "
-                "blocked by a full buffer %.1f%%; %llu dispatch stalls",
+                "blocked by a full buffer %.1f%%; %llu cycles of dispatch stalls",
                 limit, 100 * busy, ordered ? "the oldest patch's unit" : "the units (unordered)", 100 * waited_unit,
                 100 * waited_stream, 100 * blocked,
                 static_cast<unsigned long long>(s.dispatch_stalls));

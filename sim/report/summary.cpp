@@ -135,13 +135,19 @@ std::string summary(const SimResult& r) {
   // The late intervals: the TE's three stall classes that name a limit, busy, and the rest.
   const ClassCounts<TeClass>& w = r.te_late;
   const std::uint64_t gw = w.total();
-  s << "late     GPE waited " << percent(r.gpe_waited, n) << " of cycles; TE in the late intervals:";
-  std::uint64_t other = gw;
-  for (TeClass c : {TeClass::ContextLimited, TeClass::IntLimited, TeClass::StarvedByCpg, TeClass::Busy}) {
-    s << (c == TeClass::ContextLimited ? " " : "  ") << to_string(c) << " " << percent(w[c], gw);
-    other -= w[c];
+  if (r.system) {
+    // Late intervals are classified for one unit's TE; a system's waits are the ports' (limit line).
+  } else if (gw == 0) {  // no late interval: a line of zeros would read as a measurement
+    s << "late     GPE never waited for a vertex\n";
+  } else {
+    s << "late     GPE waited " << percent(r.gpe_waited, n) << " of cycles; TE in the late intervals:";
+    std::uint64_t other = gw;
+    for (TeClass c : {TeClass::ContextLimited, TeClass::IntLimited, TeClass::StarvedByCpg, TeClass::Busy}) {
+      s << (c == TeClass::ContextLimited ? " " : "  ") << to_string(c) << " " << percent(w[c], gw);
+      other -= w[c];
+    }
+    s << "  other " << percent(other, gw) << "\n";
   }
-  s << "  other " << percent(other, gw) << "\n";
   if (r.errors) {
     const ErrorStats& m = r.errors->mesh;
     const ArithmeticErrors& a = r.errors->arithmetic;

@@ -96,6 +96,19 @@ TEST(UnitsCli, RefusesASystemsOptionsForOneUnit) {
   }
 }
 
+// The summary says what was measured: no line of zeros for late intervals a system does not
+// classify, or that a GPE never had; dispatch stalls with their unit.
+TEST(UnitsCli, SummaryLinesSayWhatWasMeasured) {
+  testing::TempDir dir;
+  const auto system = testing::run_tessim({"sim", kWuson, "-L", "2", "--units", "2"}, dir.path());
+  ASSERT_EQ(system.status, 0) << system.err;
+  EXPECT_EQ(system.out.find("\nlate "), std::string::npos) << system.out;
+  EXPECT_NE(system.out.find("cycles of dispatch stalls"), std::string::npos) << system.out;
+  const auto unit = testing::run_tessim({"sim", kWuson, "-L", "8", "--gpe-cycles", "40"}, dir.path());
+  ASSERT_EQ(unit.status, 0) << unit.err;
+  EXPECT_NE(unit.out.find("late     GPE never waited for a vertex"), std::string::npos) << unit.out;
+}
+
 TEST(UnitsCli, RefusesATraceWindowWithoutATrace) {
   testing::TempDir dir;
   const auto r = testing::run_tessim({"sim", kWuson, "-L", "2", "--trace-window", "0:100"}, dir.path());
