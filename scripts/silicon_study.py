@@ -49,9 +49,10 @@ def configurations():
                 c = {"IntBlocks": n, "CpgDigitBits": r, "CpgLanes": lanes}
                 if not (r == 1 and lanes == 1):
                     configs.append(c)
-    # What shortens the paths the defaults are limited by: the CPG's products registered, and
-    # that with a two-cycle INT block.
-    configs += [{"CpgProductReg": 1}, {"CpgProductReg": 1, "IntLatency": 2}]
+    # What shortens the paths the defaults are limited by: the study's pick within the depth
+    # budget, the CPG's products registered with three-cycle INT blocks (and four CP buffers).
+    configs += [{"CpBuffers": 4, "CpgProductReg": 1, "IntLatency": 3},
+                {"CpBuffers": 4, "CpgLanes": 3, "CpgProductReg": 1, "IntLatency": 3}]
     return configs
 
 
@@ -59,7 +60,7 @@ def full(params):
     """A configuration with the study's keys filled in from the defaults."""
     return {"IntBlocks": params.get("IntBlocks", 2), "CpgLanes": params.get("CpgLanes", 1),
             "CpgDigitBits": params.get("CpgDigitBits", 1), "CpgProductReg": params.get("CpgProductReg", 0),
-            "IntLatency": params.get("IntLatency", 1)}
+            "IntLatency": params.get("IntLatency", 1), "CpBuffers": params.get("CpBuffers", 2)}
 
 
 def throughputs():
@@ -120,7 +121,7 @@ def rows(record, jobs, missing):
         unit, cpg, one_int = s["blocks"]["tess_unit"], s["blocks"]["tess_cpg"], s["blocks"]["tess_int"]
         te = s["blocks"]["tess_te"]
         row = {"int_blocks": c["IntBlocks"], "cpg_lanes": c["CpgLanes"], "cpg_digit_bits": c["CpgDigitBits"],
-               "cpg_product_reg": c["CpgProductReg"], "int_latency": c["IntLatency"],
+               "cpg_product_reg": c["CpgProductReg"], "int_latency": c["IntLatency"], "cp_buffers": c["CpBuffers"],
                "area_mm2": round(unit["area_um2"] / 1e6, 4), "area_cpg_mm2": round(cpg["area_um2"] / 1e6, 4),
                "area_int_mm2": round(one_int["area_um2"] / 1e6, 4),
                "area_seq_mm2": round(unit["area_seq_um2"] / 1e6, 4), "cells": unit["cells"],
@@ -131,7 +132,7 @@ def rows(record, jobs, missing):
                "generic_depth": g["blocks"]["tess_unit"]["depth"],
                "generic_transistors": g["blocks"]["tess_unit"]["transistors"]}
         for level in LEVELS:
-            plain = c["CpgProductReg"] == 0 and c["IntLatency"] == 1
+            plain = c["CpgProductReg"] == 0 and c["IntLatency"] == 1 and c["CpBuffers"] == 2
             t = thr.get((c["IntBlocks"], c["CpgLanes"], c["CpgDigitBits"], level)) if plain else None
             row[f"vertices_per_cycle_L{level}"] = round(t, 5) if t is not None else ""
             row[f"mvertices_per_s_L{level}"] = round(t * row["clock_mhz"], 2) if t is not None else ""
@@ -151,7 +152,12 @@ def csv_text(table):
 
 def variant(r):
     radix = 2 ** r["cpg_digit_bits"]
-    return f"{r['cpg_lanes']} lane{'s' if r['cpg_lanes'] > 1 else ''}, radix {radix if r['cpg_digit_bits'] < 24 else '2^24'}"
+    text = f"{r['cpg_lanes']} lane{'s' if r['cpg_lanes'] > 1 else ''}, radix {radix if r['cpg_digit_bits'] < 24 else '2^24'}"
+    if r["cpg_product_reg"]:
+        text += ", products registered"
+    if r["int_latency"] != 1 or r["cp_buffers"] != 2:
+        text += f", Λ = {r['int_latency']}, Nb = {r['cp_buffers']}"
+    return text
 
 
 def flips(table, generic, silicon_key, better_high):
