@@ -23,9 +23,11 @@ wire-load model or another delay target misses every record.
 """
 
 import argparse
+import atexit
 import hashlib
 import json
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -152,7 +154,10 @@ class Library:
         self.text = library_text(liberty)
         self.digest = hashlib.sha256(self.text.encode()).hexdigest()
         self.cells = cell_library(self.text)
-        self.work = Path(work or tempfile.mkdtemp(prefix="tessim-silicon-lib-"))
+        if work is None:  # a directory of its own, removed when the process ends
+            work = tempfile.mkdtemp(prefix="tessim-silicon-lib-")
+            atexit.register(shutil.rmtree, work, True)
+        self.work = Path(work)
         self.work.mkdir(parents=True, exist_ok=True)
         self.path = self.work / "cells.lib"
         self.path.write_text(self.text)
@@ -453,13 +458,24 @@ def composed_key(params, lib, versions, rtl_dir=REPO / "rtl"):
     return hashlib.sha256(json.dumps(ident, sort_keys=True).encode()).hexdigest()
 
 
+_LIBRARIES = {}
+
+
+def library(liberty=LIBERTY):
+    """The Library of a Liberty file, written out once per process."""
+    key = str(Path(liberty).resolve())
+    if key not in _LIBRARIES:
+        _LIBRARIES[key] = Library(liberty)
+    return _LIBRARIES[key]
+
+
 def cost(params, cache=CACHE, rtl_dir=REPO / "rtl", jobs=2, require_cached=False, log=None, liberty=LIBERTY):
     """Silicon cost of tess_unit with `params`: area, leakage, clock, per block and per record.
     A stored composed result of the current RTL (beside the records) is used while every record
     it names is present; otherwise the configuration is elaborated and composed, and stored."""
     params = configuration(params, rtl_dir)
     versions = tool_versions()
-    lib = Library(liberty)
+    lib = library(liberty)
     stored = Path(cache).parent / "silicon-configurations" / f"{composed_key(params, lib, versions, rtl_dir)}.json"
     if stored.exists():
         result = json.loads(stored.read_text())
@@ -599,7 +615,7 @@ def main(argv):
     start = time.monotonic()
     try:
         if args.flat:
-            result = flat(dict(args.chparam), Library(args.liberty), log=sys.stderr)
+            result = flat(dict(args.chparam), library(args.liberty), log=sys.stderr)
         else:
             result = cost(dict(args.chparam), args.cache, jobs=args.jobs, require_cached=args.require_cached,
                           log=sys.stderr, liberty=args.liberty)

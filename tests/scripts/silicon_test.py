@@ -139,7 +139,7 @@ def main():
         check("the critical path is named by registers at both ends",
               ends and "(a register)" not in ends["from"] + ends["to"], str(ends))
         check("clock in MHz is 1000 / clock in ns", abs(result["clock_mhz"] * unit["clock_ns"] - 1000) < 0.1)
-        lib = silicon.Library()
+        lib = silicon.library()
         fresh = silicon.compose_configuration({}, lib, versions, silicon.CACHE, ROOT / "rtl", 1, True, None)
         check("the stored composed result is what the records compose now",
               (fresh["area_mm2"], fresh["clock_ns"], fresh["blocks"]["tess_unit"]["critical_path_ends"])
