@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <filesystem>
@@ -242,6 +243,13 @@ SilhouetteSettings parse_silhouette_option(const std::string& text) {
   // "camera" or "eye=x,y,z", then optionally ",beta=B" and ",blend=on|off"; the eye's own commas
   // belong to it.
   std::string rest = text;
+  // Each key once: a second one would otherwise be read as part of the first one's value.
+  for (const char* key : {"eye=", "beta=", "blend="}) {
+    const std::size_t first = text.find(key);
+    if (first != std::string::npos && text.find(key, first + 1) != std::string::npos)
+      throw InputError(kCommandLine, "--silhouette",
+                       "'" + std::string(key, std::strlen(key) - 1) + "' is given twice in '" + text + "'");
+  }
   const std::size_t blend_at = rest.find(",blend=");
   if (blend_at != std::string::npos) {
     const std::string value = rest.substr(blend_at + 7);

@@ -534,6 +534,10 @@ TEST(BadInputNumbers, OnlyDecimalNumbersInSubOptions) {
     EXPECT_TRUE(contains(r.err, "--silhouette")) << bad << ": " << r.err;
   }
   EXPECT_EQ(tessim({"info", kCube.string(), "--silhouette", "eye=1e3,-2.5,+3,beta=0.5"}, dir.path()).status, 0);
+  // A key given twice is named as such (it used to read "'beta=2' ... is not a number").
+  const TessimRun twice = tessim({"info", kCube.string(), "--silhouette", "eye=1,2,3,beta=1,beta=2"}, dir.path());
+  EXPECT_EQ(twice.status, 2) << twice.err;
+  EXPECT_TRUE(contains(twice.err, "'beta' is given twice")) << twice.err;
 }
 
 TEST(BadInputIgnored, ColorMaxWithoutAHeatMapIsRefused) {
