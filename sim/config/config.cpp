@@ -1,5 +1,6 @@
 #include "sim/config/config.hpp"
 
+#include <cmath>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -47,9 +48,10 @@ void check_range(const std::string& source, const ParamSpec& p, const UnitConfig
     const auto bound = [&](double b) {
       return p.type == ParamType::Int ? nlohmann::json(static_cast<long long>(b)) : nlohmann::json(b);
     };
+    // JSON has no NaN or infinity (dump() prints null): such a value is named as what it is.
+    const std::string shown = std::isnan(x) ? "NaN" : std::isinf(x) ? (x > 0 ? "infinity" : "-infinity") : value.dump();
     throw InputError(source, p.key,
-                     "value " + value.dump() + " out of range [" + bound(p.min).dump() + ", " +
-                         bound(p.max).dump() + "]");
+                     "value " + shown + " out of range [" + bound(p.min).dump() + ", " + bound(p.max).dump() + "]");
   }
 }
 

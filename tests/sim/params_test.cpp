@@ -102,6 +102,8 @@ TEST(Params, RangeBoundsAcceptedAndValuesOutsideRejectedNamingTheKey) {
         EXPECT_NE(e.find("cfg.json: " + std::string(p.key) + ": value"), std::string::npos) << e;
         EXPECT_NE(e.find("out of range"), std::string::npos) << e;
       }
+      // NaN is named as NaN (JSON's dump() printed it as null).
+      EXPECT_NE(error_of({{p.key, std::nan("")}}).find(": value NaN out of range"), std::string::npos);
       EXPECT_NE(error_of({{p.key, "x"}}).find(std::string(p.key) + ": expected a number"), std::string::npos);
     } else if (p.type == ParamType::UInt64) {
       EXPECT_EQ(error_of({{p.key, 0}}), "");
