@@ -42,8 +42,6 @@ void run_tessellate(const TessellateArgs& args) {
   // "-": binary PLY on standard output (compute measured apart from the file system, or piped);
   // the summary then goes to standard error.
   const bool to_stdout = output_kind(args.output) == OutputKind::Stdout;
-  if (to_stdout && args.weld)
-    throw InputError("command line", "--weld", "writes a file: give -o OUT.ply or OUT.obj");
   if (!to_stdout) check_output_paths({{"-o", args.output}}, {{"MESH", args.mesh}});
   std::FILE* report = to_stdout ? stderr : stdout;
 

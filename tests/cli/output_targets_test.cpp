@@ -253,6 +253,9 @@ TEST(OutputTargets, DashIsStandardOutputEverywhere) {
       {{"sim", mesh, "-L", "2", "--trace", "-"}, "{\"otherData\"", "cycles"},
       {{"sim", mesh, "-L", "2", "-o", "-"}, "ply\n", "cycles"},
       {{"tessellate", mesh, "-L", "2", "-o", "-"}, "ply\n", "patches"},
+      // Welded, as `sim -o - --weld` does (tessellate refused it).
+      {{"tessellate", mesh, "-L", "2", "--weld", "-o", "-"}, "ply\n", "welded"},
+      {{"sim", mesh, "-L", "2", "--weld", "-o", "-"}, "ply\n", "welded"},
       {{"report", stats.string(), "-o", "-"}, "<!DOCTYPE html>", "wrote"},
       {{"render", mesh, "-L", "2", "--size", "64x48", "-o", "-"}, "\x89PNG", "wrote"},
       {pattern, "<svg", "triangles"},
