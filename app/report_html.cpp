@@ -4,9 +4,11 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+#include <zlib.h>
 
 #include "app/report_page.hpp"
 #include "model/base/error.hpp"
+#include "render/raster.hpp"
 #include "sim/report/report.hpp"
 #include "sim/version.hpp"
 
@@ -186,7 +188,21 @@ PngCheck png_size(std::string_view b) {
         r.error = "malformed PNG (zero width or height)";
         return r;
       }
+      // The page states the size it embeds: a header claiming more than any picture tessim
+      // makes is refused rather than handed to the browser.
+      if (r.width > static_cast<std::uint32_t>(render::kMaxImageSide) ||
+          r.height > static_cast<std::uint32_t>(render::kMaxImageSide)) {
+        r.error = "PNG of " + std::to_string(r.width) + "x" + std::to_string(r.height) + " pixels: larger than " +
+                  std::to_string(render::kMaxImageSide) + " on a side";
+        return r;
+      }
       first = false;
+    }
+    // Every chunk's CRC-32 (over its type and data): a damaged file is refused, not embedded.
+    const auto* bytes = reinterpret_cast<const Bytef*>(b.data() + at + 4);
+    if (crc32(0L, bytes, static_cast<uInt>(length + 4)) != u32(at + 8 + length)) {
+      r.error = "damaged PNG (chunk " + std::string(type) + " fails its CRC check)";
+      return r;
     }
     at += 12 + length;
     if (type == "IEND") return r;

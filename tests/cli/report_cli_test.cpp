@@ -4,6 +4,7 @@
 // the DOM — and bad input: exit status 2, one error line, no file written. Also `tessim compare`
 // with the timeline the statistics carry since schema 3.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <sys/wait.h>
 
@@ -252,6 +253,25 @@ TEST(ReportCli, BadInputIsAnErrorAndWritesNothing) {
   std::string truncated = slurp(fs::path(TESSIM_SOURCE_DIR) / "docs/images/wuson_adaptive.png");
   truncated.resize(truncated.size() / 2);
   const fs::path half_png = dir.write("half.png", truncated);
+  // A PNG with one byte of its image data flipped (its CRC no longer matches), and one whose
+  // header claims 100 000 x 100 000 pixels (the header's CRC made right): both used to be embedded.
+  std::string whole = slurp(fs::path(TESSIM_SOURCE_DIR) / "docs/images/wuson_adaptive.png");
+  std::string flipped = whole;
+  const std::size_t idat = flipped.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  flipped[idat + 20] = static_cast<char>(flipped[idat + 20] ^ 0x5a);
+  const fs::path damaged_png = dir.write("damaged.png", flipped);
+  std::string huge = whole;
+  for (std::size_t at : {16u, 20u}) {  // IHDR width, height: 100 000 big-endian
+    huge[at] = 0;
+    huge[at + 1] = 1;
+    huge[at + 2] = static_cast<char>(0x86);
+    huge[at + 3] = static_cast<char>(0xa0);
+  }
+  const std::uint32_t crc = static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(huge.data() + 12), 17));  // type + 13 bytes of IHDR
+  for (int i = 0; i < 4; ++i) huge[29 + i] = static_cast<char>(crc >> (24 - 8 * i));
+  const fs::path huge_png = dir.write("huge.png", huge);
 
   struct Case {
     std::vector<std::string> args;
@@ -278,6 +298,8 @@ TEST(ReportCli, BadInputIsAnErrorAndWritesNothing) {
        "--image"},
       {{"report", s, "--image", text_png.string(), "-o", o}, text_png.string(), "--image"},
       {{"report", s, "--image", half_png.string(), "-o", o}, half_png.string(), "--image"},
+      {{"report", s, "--image", damaged_png.string(), "-o", o}, damaged_png.string(), "--image"},
+      {{"report", s, "--image", huge_png.string(), "-o", o}, huge_png.string(), "--image"},
       {{"report", s, "--trace", (dir.path() / "none.json").string(), "-o", o}, (dir.path() / "none.json").string(),
        "--trace"},
       {{"report", s, "-o", (dir.path() / "no/such/dir/r.html").string()}, (dir.path() / "no/such/dir/r.html").string(),
