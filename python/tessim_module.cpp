@@ -181,7 +181,15 @@ NormalMode normal_mode(const std::string& text) {
 
 // The float reference over a whole mesh: every patch's vertices, and its triangles with
 // indices into the whole output.
-py::tuple tessellate(const Mesh& mesh, int L, const std::string& normals) {
+py::tuple tessellate(const Mesh& mesh, const py::object& factor, const std::string& normals) {
+  // An int, not a bool: Python's True is an int too, and pybind11 would take it as L = 1.
+  if (PyBool_Check(factor.ptr()) || !PyLong_Check(factor.ptr()))
+    throw InputError("tessellate", "L", py::repr(factor).cast<std::string>() + " is not an integer");
+  const long long wide = factor.cast<long long>();
+  if (wide < 1 || wide > kMaxTessFactor)
+    throw InputError("tessellate", "tessellation factor",
+                     std::to_string(wide) + " is outside 1.." + std::to_string(kMaxTessFactor));
+  const int L = static_cast<int>(wide);
   const NormalMode mode = normal_mode(normals);
   std::vector<glm::dvec3> positions, vertex_normals;
   std::vector<glm::uvec3> triangles;

@@ -126,6 +126,10 @@ class TessellateTest(unittest.TestCase):
             tessim.tessellate(self.mesh, L=0)
         with self.assertRaisesRegex(ValueError, "normals: 'smooth' is not one of quadratic, reflect, linear, derivative"):
             tessim.tessellate(self.mesh, L=2, normals="smooth")
+        # True is an int in Python; as a tessellation factor it is a mistake, not L = 1.
+        for bad in (True, 2.0, "4"):
+            with self.assertRaisesRegex(ValueError, "L: .* is not an integer"):
+                tessim.tessellate(self.mesh, L=bad)
 
 
 class ConfigTest(unittest.TestCase):
