@@ -131,7 +131,7 @@ void expect_refused(const std::vector<std::string>& args, const std::vector<std:
 }
 
 // -o - streams binary PLY to standard output, byte for byte what -o OUT.ply writes, with the
-// summary on standard error; --weld needs a file.
+// summary on standard error; welded too, as `sim -o - --weld` does.
 TEST(CliTessellate, StandardOutputCarriesTheSameBytesAsAFile) {
   CliDirs d;
   const fs::path file = d.work.path() / "out.ply";
@@ -141,10 +141,12 @@ TEST(CliTessellate, StandardOutputCarriesTheSameBytesAsAFile) {
   ASSERT_EQ(piped.status, 0) << piped.err;
   EXPECT_TRUE(piped.out == slurp(file)) << piped.out.size() << " bytes on stdout";
   EXPECT_NE(piped.err.find("standard output: 3732 patches"), std::string::npos) << piped.err;
+  const fs::path welded = d.work.path() / "welded.ply";
+  ASSERT_EQ(tessim({"tessellate", kWuson.string(), "-o", welded.string(), "--weld"}, d.scratch.path()).status, 0);
   const RunResult weld = tessim({"tessellate", kWuson.string(), "-o", "-", "--weld"}, d.scratch.path());
-  EXPECT_EQ(weld.status, 2);
-  EXPECT_NE(weld.err.find("tessim: error: command line: --weld:"), std::string::npos) << weld.err;
-  EXPECT_TRUE(weld.out.empty());
+  ASSERT_EQ(weld.status, 0) << weld.err;
+  EXPECT_TRUE(weld.out == slurp(welded)) << weld.out.size() << " bytes on stdout";
+  EXPECT_NE(weld.err.find("welded: "), std::string::npos) << weld.err;
 }
 
 TEST(CliTessellate, RefusesBadInputWithoutWritingAnything) {
