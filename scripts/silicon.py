@@ -382,27 +382,14 @@ def record_path(cache, key):
 
 
 def write_record(path, record):
-    path.parent.mkdir(parents=True, exist_ok=True)
-    record = dict(record)
-    paths = record["result"].pop("paths")
-    text = json.dumps(record, indent=1)
-    text = text[:text.rindex("}")].rstrip() + ',\n "paths": [\n'
-    text += ",\n".join("  " + json.dumps(p) for p in paths) + "\n ]\n}\n"
-    partial = path.with_name(path.name + ".tmp")
-    partial.write_text(text)
-    partial.replace(path)
+    record = json.loads(json.dumps(record))
+    yosys_cost.write_record_rows(path, record, record["result"].pop("paths"))
 
 
 def read_record(path):
-    record = json.loads(Path(path).read_text())
-    result = record["result"]
-    result["paths"] = record.get("paths", [])
+    result = yosys_cost.read_record(path)
+    result.setdefault("paths", [])
     return result
-
-
-def configuration(params, rtl_dir=REPO / "rtl"):
-    defaults = yosys_cost.package_defaults(rtl_dir)
-    return {k: int(v) for k, v in params.items() if int(v) != defaults.get(k)}
 
 
 def plan(params, lib, versions, rtl_dir=REPO / "rtl"):
@@ -473,7 +460,7 @@ def cost(params, cache=CACHE, rtl_dir=REPO / "rtl", jobs=2, require_cached=False
     """Silicon cost of tess_unit with `params`: area, leakage, clock, per block and per record.
     A stored composed result of the current RTL (beside the records) is used while every record
     it names is present; otherwise the configuration is elaborated and composed, and stored."""
-    params = configuration(params, rtl_dir)
+    params = cost_records.normalized(params, rtl_dir)
     versions = tool_versions()
     lib = library(liberty)
     stored = Path(cache).parent / "silicon-configurations" / f"{composed_key(params, lib, versions, rtl_dir)}.json"
@@ -574,9 +561,9 @@ def path_ends(modules, records, owner, path):
     return {"from": named(first_at, start), "to": named(last_at, end)}
 
 
-def flat(params, lib, rtl_dir=REPO / "rtl", log=None):
+def flat(params, lib, rtl_dir=REPO / "rtl"):
     """The unit mapped and timed in one piece: area, leakage, worst register-to-register path."""
-    params = configuration(params, rtl_dir)
+    params = cost_records.normalized(params, rtl_dir)
     sources = " ".join(str(p) for p in yosys_cost.rtl_sources(rtl_dir))
     chparam = "".join(f"chparam -set {k} {v} tess_unit\n" for k, v in params.items())
     with tempfile.TemporaryDirectory(prefix="tessim-silicon-flat-") as tmp:
@@ -615,7 +602,7 @@ def main(argv):
     start = time.monotonic()
     try:
         if args.flat:
-            result = flat(dict(args.chparam), library(args.liberty), log=sys.stderr)
+            result = flat(dict(args.chparam), library(args.liberty))
         else:
             result = cost(dict(args.chparam), args.cache, jobs=args.jobs, require_cached=args.require_cached,
                           log=sys.stderr, liberty=args.liberty)

@@ -160,7 +160,7 @@ def variant(r):
     return text
 
 
-def flips(table, generic, silicon_key, better_high):
+def flips(table, generic, silicon_key):
     """Pairs that the generic proxy orders one way and silicon the other."""
     out = []
     for i, a in enumerate(table):
@@ -220,7 +220,7 @@ def doc_tables(table, missing=()):
         sil = [r[f"mvertices_per_s_L{level}"] for r in with_thr]
         rho = spearman(generic, sil)
         flipped = flips(with_thr, lambda r: r[f"vertices_per_cycle_L{level}"] * 48.0 / max(48, r["generic_depth"]),
-                        f"mvertices_per_s_L{level}", True)
+                        f"mvertices_per_s_L{level}")
         lines.append(f"At L = {level}, throughput per unit time by the generic depth budget (48 levels) against "
                      f"Mvertices/s at the STA clock: rank correlation **{rho:.3f}** over {len(with_thr)} "
                      f"configurations, {len(flipped)} of {len(with_thr) * (len(with_thr) - 1) // 2} pairs ordered "

@@ -565,7 +565,12 @@ def compress_paths(paths):
 def write_record(path, record):
     """A record as JSON, its boundary paths (most of it) compressed and one to a line."""
     record = json.loads(json.dumps(record))
-    paths = compress_paths(record["result"].pop("paths"))
+    write_record_rows(path, record, compress_paths(record["result"].pop("paths")))
+
+
+def write_record_rows(path, record, paths):
+    """`record` as JSON with `paths` after it, one row to a line (also scripts/silicon.py's
+    records), written to a temporary and renamed into place."""
     text = json.dumps(record, indent=1)
     text = text[:text.rindex("}")].rstrip() + ',\n "paths": [\n'
     text += ",\n".join("  " + json.dumps(p) for p in paths) + "\n ]\n}\n"
