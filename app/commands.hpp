@@ -216,6 +216,7 @@ void register_pattern(CLI::App& app);
 void register_stpn_import(CLI::App& app);
 void register_compare(CLI::App& app);
 void register_report(CLI::App& app);
+void register_power(CLI::App& app);
 #ifdef TESSIM_HAVE_COSIM
 void register_cosim(CLI::App& app);
 void register_rtlbench(CLI::App& app);

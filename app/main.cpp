@@ -98,6 +98,7 @@ int main(int argc, char** argv) {
   tessim::app::register_stpn_import(app);
   tessim::app::register_compare(app);
   tessim::app::register_report(app);
+  tessim::app::register_power(app);
 #ifdef TESSIM_HAVE_COSIM
   tessim::app::register_cosim(app);
   tessim::app::register_rtlbench(app);

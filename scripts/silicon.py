@@ -343,10 +343,10 @@ def parse_worst(body, names):
             "to": rtl(end.group(1).rsplit("/", 1)[0]), "cells": cells}
 
 
-def map_record(lib, name, text, boxes, work, whole=False):
-    """Maps one record (or, with `whole`, a flattened design) onto the library and times it;
-    `boxes` are its black-box instances, whose pins become ports of the mapped netlist."""
-    start = time.monotonic()
+def write_mapped(lib, name, text, boxes, work):
+    """Maps one record onto the library with MAP_SCRIPT: WORK/mapped.v (the netlist, top `rec`,
+    the black boxes' pins as ports named INST.PIN) and WORK/mapped.cells (its `stat`). Returns
+    WORK/mapped."""
     job = Path(work) / "job.il"
     job.write_text(text)
     out = Path(work) / "mapped"
@@ -355,6 +355,14 @@ def map_record(lib, name, text, boxes, work, whole=False):
     script.write_text(MAP_SCRIPT.format(job=job, top=name, lib=lib.path, delay=DELAY_TARGET_PS, constr=lib.constr,
                                         evert=evert, top_name="rec", out=out))
     yosys_cost.run_yosys(script, Path(work) / "map.log", work)
+    return out
+
+
+def map_record(lib, name, text, boxes, work, whole=False):
+    """Maps one record (or, with `whole`, a flattened design) onto the library and times it;
+    `boxes` are its black-box instances, whose pins become ports of the mapped netlist."""
+    start = time.monotonic()
+    out = write_mapped(lib, name, text, boxes, work)
     total, cells = yosys_stat.cell_table(Path(f"{out}.cells").read_text())
     unknown = sorted(c for c in cells if c not in lib.cells)
     if unknown:

@@ -1,0 +1,518 @@
+#!/usr/bin/python3
+"""Energy of a configuration of the unit on the OSU 0.18 um cells, from the switching activity of
+real workloads (docs/silicon.md, Energy).
+
+    energy.py --tessim BIN [-chparam NAME VALUE]... [--variant NAME] [--name NAME] [--jobs J]
+
+BIN must be a tessim whose RTL build NAME (default n2) was Verilated with toggle coverage
+(`cmake -DTESSIM_RTL_COVERAGE=ON -DTESSIM_RTL_VARIANTS=NAME`), and the -chparam values must be
+that build's parameters. For each workload of WORKLOADS the RTL runs in lock-step with the cycle
+model (`tessim cosim`), which counts every register and port bit's toggles in every instance, and
+the cycle model's statistics give the run's action counts (INT operations, CPG cycles, patches,
+vertices). Each record of the configuration (scripts/silicon.py) is mapped onto the library,
+the activity of its registers and ports (toggles per cycle, instance by instance) is propagated
+through its cells (scripts/gate_activity.py) and OpenSTA prices it: leakage, the clock's energy
+per cycle (flip-flops clocked, nothing else switching) and the data's energy per cycle.
+
+The records are grouped into the blocks a user reads (BLOCKS), and each block's data energy is
+divided by its action count in the first workload: an energy per action (Accelergy's model:
+energy = actions x energy per action). The other workloads check that model: their own
+propagated activity against the actions times the first workload's energy per action.
+
+Writes docs/results/silicon/energy/NAME.json, which `tessim power` reads (embedded at build time).
+"""
+
+import argparse
+import collections
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import cost_records  # noqa: E402
+import gate_activity  # noqa: E402
+import silicon  # noqa: E402
+import yosys_cost  # noqa: E402
+
+REPO = Path(__file__).resolve().parent.parent
+OUT = REPO / "docs" / "results" / "silicon" / "energy"
+SCHEMA = 1
+WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
+CAMERA = "eye=2.6,1.3,-2.9,target=0,0.6,-0.2"
+# The workloads, the first one calibrating the energy per action: Wuson at L = 8 and one adaptive
+# view of it (the adaptive study's middle distance), quadratic normals, K = 8.
+WORKLOADS = {
+    "wuson_l8": [WUSON, "-L", "8", "--normals", "quadratic", "--gpe-cycles", "8"],
+    "wuson_adaptive": [WUSON, "--adaptive", "screen", "--camera", CAMERA, "--pixels-per-segment", "6",
+                       "--partitioning", "integer", "--normals", "quadratic", "--gpe-cycles", "8"],
+}
+# Blocks: (name, the records' module names, what counts one action). A block holds every instance
+# of its modules, except the INT blocks, one block each ("int0", "int1", ...).
+BLOCKS = [
+    ("cpg", ("tess_cpg_array", "tess_cpg", "tess_cpg_edge", "tess_div", "tess_isqrt"), "cpg_busy"),
+    ("fsu", ("tess_fsu", "tess_fsu_edge"), "triangles"),
+    ("cp_buffers", ("tess_cpbuf",), "triangles"),
+    ("te", ("tess_te",), "int_ops"),
+    ("dpg", ("tess_dpg",), "vertices"),
+    ("int", ("tess_int",), "int_busy"),
+    ("fifos", ("tess_fifo",), "vertices"),
+    ("top", ("tess_unit",), "vertices"),
+]
+ACTIONS = {
+    "cpg_busy": "cycles the CPG computes (statistics cpg.busy)",
+    "triangles": "triangles taken in",
+    "int_ops": "INT operations issued, all blocks (int.busy)",
+    "vertices": "vertices out",
+    "int_busy": "the INT block's operations (int.blocks[i].busy)",
+}
+PERIOD_NS = 10.0  # OpenSTA's clock for pricing; energies per cycle do not depend on it
+
+
+class EnergyError(Exception):
+    pass
+
+
+def run(cmd, env=None):
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if proc.returncode != 0:
+        raise EnergyError(f"{' '.join(cmd)} failed ({proc.returncode}):\n{proc.stderr[-2000:]}")
+    return proc
+
+
+def workload_run(tessim, variant, name, args, work):
+    """(statistics, {instance path: {signal bit: toggles}}) of one workload."""
+    dat = Path(work) / f"{name}.dat"
+    env = dict(os.environ, TESSIM_RTL_COVERAGE_FILE=str(dat))
+    start = time.monotonic()
+    run([tessim, "cosim", *args, "--variant", variant], env)
+    stats_path = Path(work) / f"{name}.stats.json"
+    run([tessim, "sim", *args, "--int-blocks", str(int_blocks_of(tessim, variant)), "--stats", str(stats_path)])
+    files = sorted(Path(work).glob(f"{name}.dat.*"))
+    if not files:
+        raise EnergyError(f"{tessim} wrote no coverage for {name}: is its RTL build Verilated with coverage?")
+    toggles = read_toggles(files)
+    print(f"  {name}: {time.monotonic() - start:.0f} s", file=sys.stderr, flush=True)
+    return json.loads(stats_path.read_text()), toggles
+
+
+_BUILDS = {}
+
+
+def int_blocks_of(tessim, variant):
+    if variant not in _BUILDS:
+        schema = json.loads(run([tessim, "schema"]).stdout)
+        builds = schema.get("rtl_builds", {}).get("builds", [])
+        match = [b for b in builds if b["name"] == variant]
+        if not match:
+            raise EnergyError(f"{tessim} has no RTL build {variant}")
+        _BUILDS[variant] = dict(match[0]["parameters"])
+    return _BUILDS[variant].get("IntBlocks", 2)
+
+
+def read_toggles(files):
+    """Verilator coverage files -> {instance below tess_unit as Verilator names it ("" for the top,
+    "u_te.g_int[*].u_int"): {signal bit ("sum_q[3]"): toggles}}, summed over the files. Verilator
+    counts both edges of a bit (the clock toggles twice a cycle) and merges the instances of a
+    generate loop into one name with [*], whose counts are then the instances' sum."""
+    out = collections.defaultdict(lambda: collections.defaultdict(int))
+    for path in files:
+        for line in open(path, encoding="latin-1"):
+            if not line.startswith("C '"):
+                continue
+            body, count = line[3:].rsplit("' ", 1)
+            keys = dict(item.split("\x02", 1) for item in body.split("\x01") if "\x02" in item)
+            if not keys.get("page", "").startswith("v_toggle/"):
+                continue
+            hier = keys.get("h", "")
+            inst = hier.split(".", 2)[2] if hier.count(".") >= 2 else ""
+            out[inst][keys.get("o", "")] += int(count)
+    return out
+
+
+class Toggles:
+    """A run's toggles looked up by instance path ("u_te/g_int[1].u_int") and signal bit as the
+    mapped netlist names it: the density (toggles per cycle) of one instance. An instance of a
+    merged generate loop gets the loop's mean. Names differ in three ways: a one-bit vector is a
+    scalar in the netlist ("rd_ptr_q" for "rd_ptr_q[0]"), an unpacked array is flattened by
+    Yosys's mem2reg ("temp_q[55][3]" for "temp_q[13][3][3]" with 4 elements in the inner
+    dimension), and registers local to a generate block are not counted by Verilator at all."""
+
+    def __init__(self, counts, cycles, paths):
+        self.counts = counts
+        self.cycles = cycles
+        self.paths = [p.replace("/", ".") for p in paths]
+        self.patterns = [(k, re.compile(re.escape(k).replace(r"\[\*\]", r"\[\d+\]") + "$")) for k in counts]
+        self.resolved = {}
+        self.dims = {}
+
+    def instance(self, instance):
+        """(coverage key, instances merged into it) of an instance path, or (None, 0)."""
+        if instance not in self.resolved:
+            key = instance.replace("/", ".")
+            found = (None, 0)
+            if key in self.counts:
+                found = (key, 1)
+            else:
+                for k, pattern in self.patterns:
+                    if pattern.match(key):
+                        found = (k, max(1, sum(1 for p in self.paths if pattern.match(p))))
+                        break
+            self.resolved[instance] = found
+        return self.resolved[instance]
+
+    def shape(self, key, base):
+        """Sizes of the unpacked dimensions of `base` in instance `key` (the indices before the bit)."""
+        if (key, base) not in self.dims:
+            sizes = []
+            for name in self.counts[key]:
+                m = re.fullmatch(re.escape(base) + r"((?:\[\d+\])+)", name)
+                if m:
+                    idx = [int(x) for x in re.findall(r"\d+", m.group(1))]
+                    sizes = [max(a, b + 1) for a, b in zip(sizes + [0] * len(idx), idx)] if sizes else [i + 1 for i in idx]
+            self.dims[(key, base)] = sizes
+        return self.dims[(key, base)]
+
+    def density(self, instance, signal):
+        key, merged = self.instance(instance)
+        if key is None:
+            return None
+        table = self.counts[key]
+        for name in (signal, signal + "[0]"):
+            if name in table:
+                return table[name] / self.cycles / merged
+        m = re.fullmatch(r"(.+?)\[(\d+)\](?:\[(\d+)\])?", signal)
+        if m:  # a flattened unpacked array: element i of the netlist is (x, k) of the RTL
+            base, i, bit = m.group(1), int(m.group(2)), m.group(3)
+            sizes = self.shape(key, base)
+            if len(sizes) == 3 and bit is not None:
+                inner = sizes[1]
+                name = f"{base}[{i // inner}][{i % inner}][{bit}]"
+                if name in table:
+                    return table[name] / self.cycles / merged
+            if len(sizes) == 3 and bit is None:
+                inner = sizes[1]
+                name = f"{base}[{i // inner}][{i % inner}][0]"
+                if name in table:
+                    return table[name] / self.cycles / merged
+        return None
+
+
+def map_netlists(params, lib, work_root, jobs):
+    """{derived record name: (module base, instances, key, mapped netlist path)} of the
+    configuration, each record mapped once into WORK_ROOT/<key> (reused when there). A mapping
+    whose area differs from the committed silicon record is an error: the energy would belong to
+    another netlist than the area and the clock."""
+    versions = silicon.tool_versions()
+    modules, top, counts, jobs_of = silicon.plan(params, lib, versions)
+    out = {}
+    todo = []
+    for name in counts:
+        text, boxes, key = jobs_of[name]
+        work = Path(work_root) / key[:24]
+        out[name] = (modules[name].base, counts[name], key, work / "mapped.v", modules)
+        if not (work / "mapped.v").exists():
+            todo.append((name, text, boxes, work))
+
+    def one(job):
+        name, text, boxes, work = job
+        work.mkdir(parents=True, exist_ok=True)
+        start = time.monotonic()
+        silicon.write_mapped(lib, name, text, boxes, work)
+        print(f"  mapped {modules[name].base} in {time.monotonic() - start:.0f} s", file=sys.stderr, flush=True)
+
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        list(pool.map(one, sorted(todo, key=lambda j: -len(j[1]))))
+    for name, (base, n, key, path, _) in out.items():
+        record = silicon.record_path(silicon.CACHE, key)
+        if record.exists():
+            stored = silicon.read_record(record)["cell_counts"]
+            _, cells = silicon.yosys_stat.cell_table(path.with_suffix(".cells").read_text())
+            if cells != stored:
+                raise EnergyError(f"{base}: the mapping differs from its silicon record {record.name}")
+    return modules, top, counts, out
+
+
+def instance_paths(modules, top):
+    """[(instance path below the top, "" for the top, derived record name)] of every record instance."""
+    out = []
+
+    def visit(name, path):
+        out.append((path, name))
+        for inst, child in sorted(modules[name].instances.items()):
+            if yosys_cost.is_inline(modules[child]):
+                continue
+            visit(child, f"{path}/{inst}" if path else inst)
+
+    visit(top, "")
+    return out
+
+
+class RecordPower:
+    """One mapped record, priced with the activity of any of its instances."""
+
+    def __init__(self, lib, path, functions, tables, work):
+        text, self.boxes = gate_activity.rename_box_ports(Path(path).read_text())
+        self.path = Path(work) / "power.v"
+        Path(work).mkdir(parents=True, exist_ok=True)
+        self.path.write_text(text)
+        self.netlist = gate_activity.Netlist(text, functions)
+        self.tables = tables
+        self.lib = lib
+        self.work = work
+        self.unmatched = set()
+
+    def source_signal(self, instance, net):
+        """(instance path, signal bit) of the RTL that a source net of this record carries."""
+        base = net
+        if re.fullmatch(r"box\d+(\[\d+\])?", net):
+            box, _, bit = net.partition("[")
+            original = self.boxes[box]  # INST.PIN of a black box
+            inst, pin = original.rsplit(".", 1)
+            signal = pin + (f"[{bit}" if bit else "")
+            return (f"{instance}/{inst}" if instance else inst), signal
+        if "." in base:  # a register of an inlined child: CHILD.SIGNAL
+            inst, signal = base.rsplit(".", 1)
+            return (f"{instance}/{inst}" if instance else inst), signal
+        return instance, base
+
+    def activity(self, instance, toggles):
+        """(net activity, sources matched, sources not found) for one instance and one run's
+        Toggles (None: every source still, the clock alone). A register the run did not count
+        (local to a generate block) takes the density its D input propagates to, iterated to a
+        fixed point from the counted registers' mean (a register's output changes in a cycle
+        when its input did in the cycle before); an input not counted takes the counted mean."""
+        found = missing = 0
+        densities = {}
+        netlist = self.netlist
+        inputs = [b for b in netlist.input_bits if b != "clk_i"]
+        flops = [q for _, q in netlist.flops]
+        unknown_flops = []
+        if toggles is None:
+            act = gate_activity.propagate(netlist, self.tables, lambda net: (0.5, 0.0))
+            return act, 0, 0
+        for net in inputs + flops:
+            inst, signal = self.source_signal(instance, net)
+            d = toggles.density(inst, signal)
+            if d is None:
+                missing += 1
+                self.unmatched.add(signal)
+                if net in flops:
+                    unknown_flops.append(net)
+            else:
+                found += 1
+                densities[net] = min(d, 2.0)
+        mean = sum(densities.values()) / len(densities) if densities else 0.0
+        guess = {q: mean for q in unknown_flops}
+        d_of = {q: d for q, d in netlist.flop_inputs.items()}
+        act = None
+        for _ in range(4 if unknown_flops else 1):
+            act = gate_activity.propagate(netlist, self.tables,
+                                          lambda net: (0.5, densities.get(net, guess.get(net, mean))))
+            for q in unknown_flops:
+                d_net = d_of.get(q)
+                guess[q] = min(act.get(d_net, (0.5, mean))[1], 1.0) if d_net else mean
+        return act, found, missing
+
+    def price(self, act):
+        return gate_activity.run_power(self.lib.path, self.path, act, self.netlist, self.work, PERIOD_NS)
+
+
+def pj_per_cycle(power):
+    """Dynamic energy per clock cycle (pJ) of an OpenSTA power result."""
+    return (power["internal_w"] + power["switching_w"]) * power["period_ns"] * 1e3
+
+
+ICG = """\
+module icg(clk_i, en_i, gclk_o);
+  input clk_i;
+  input en_i;
+  output gclk_o;
+  wire en_l;
+  LATCH l (.CLK(nclk), .D(en_i), .Q(en_l));
+  INVX1 i (.A(clk_i), .Y(nclk));
+  AND2X2 a (.A(clk_i), .B(en_l), .Y(gclk_o));
+  wire nclk;
+endmodule
+"""
+FLOPS_PER_GATE = 32  # flip-flops behind one clock gate (a leaf of the clock tree)
+
+
+def clock_gate(lib, work):
+    """A latch-based clock gate from the library's cells (a LATCH open while the clock is low, an
+    AND2X2, an inverter): its area, leakage and energy per cycle with the enable still; a gated
+    flip-flop's clock pin costs nothing while the gate is shut."""
+    work = Path(work)
+    work.mkdir(parents=True, exist_ok=True)
+    (work / "icg.v").write_text(ICG)
+    script = work / "icg.tcl"
+    script.write_text(f"read_liberty {lib.path}\nread_verilog {work / 'icg.v'}\nlink_design icg\n"
+                      f"create_clock -name clk -period {PERIOD_NS} [get_ports clk_i]\n"
+                      "sta::set_power_input_activity 0 0.5\nreport_power -digits 6\nexit\n")
+    proc = subprocess.run(["sta", "-no_init", "-no_splash", "-exit", str(script)], capture_output=True, text=True)
+    m = re.search(r"^Total\s+([\d.eE+-]+)\s+([\d.eE+-]+)\s+([\d.eE+-]+)", proc.stdout, re.M)
+    if proc.returncode != 0 or not m:
+        raise EnergyError(f"OpenSTA failed on the clock gate:\n{proc.stdout[-800:]}{proc.stderr[-800:]}")
+    cells = {"LATCH": 1, "AND2X2": 1, "INVX1": 1}
+    return {"cells": cells, "area_um2": sum(lib.cells[c]["area"] * n for c, n in cells.items()),
+            "leakage_nw": sum(lib.cells[c]["leakage_nw"] * n for c, n in cells.items()),
+            "pj_per_cycle": round((float(m.group(1)) + float(m.group(2))) * PERIOD_NS * 1e3, 6),
+            "flops_per_gate": FLOPS_PER_GATE}
+
+
+def actions(stats):
+    """A run's action counts (ACTIONS) from its statistics; the INT blocks' one by one."""
+    out = {"cpg_busy": stats["cpg"]["busy"], "triangles": stats["triangles_in"], "int_ops": stats["int"]["busy"],
+           "vertices": stats["vertices_out"], "cycles": stats["cycles"]}
+    for i, b in enumerate(stats["int"]["blocks"]):
+        out[f"int_busy{i}"] = b["busy"]
+    return out
+
+
+def block_of(base, path):
+    """The user-facing block of a record instance: (block name, action key)."""
+    for name, bases, action in BLOCKS:
+        if base in bases:
+            if name == "int":
+                index = int(re.search(r"g_int\[(\d+)\]", path).group(1))
+                return f"int{index}", f"int_busy{index}"
+            return name, action
+    raise EnergyError(f"record {base} belongs to no block of energy.py's BLOCKS")
+
+
+def characterize(tessim, variant, params, name, jobs, work_root):
+    lib = silicon.library()
+    params = cost_records.normalized(params, REPO / "rtl")
+    start = time.monotonic()
+    silicon_cost = silicon.cost(params, require_cached=True)
+    modules, top, counts, mapped = map_netlists(params, lib, Path(work_root) / "netlists", jobs)
+    runs = {}
+    with tempfile.TemporaryDirectory(prefix="tessim-energy-") as tmp:
+        for wname, args in WORKLOADS.items():
+            runs[wname] = workload_run(tessim, variant, wname, args, tmp)
+    functions = gate_activity.liberty_functions(lib.text)
+    tables = gate_activity.cell_tables(functions)
+    records = {}
+    for rname, (base, n, key, path, _) in mapped.items():
+        records[rname] = RecordPower(lib, path, functions, tables, Path(work_root) / "power" / key[:24])
+
+    all_instances = instance_paths(modules, top)
+    paths = [p for p, _ in all_instances]
+
+    def price_instance(item):
+        path, rname = item
+        rec = records[rname]
+        out = {"path": path or "tess_unit", "record": rname, "base": modules[rname].base}
+        act, _, _ = rec.activity(path, None)
+        still = rec.price(act)
+        out["clock_pj"] = pj_per_cycle(still)
+        out["leakage_nw"] = still["leakage_w"] * 1e9
+        out["flops"] = len(rec.netlist.flops)
+        out["workloads"] = {}
+        for wname, (stats, toggles) in runs.items():
+            act, found, missing = rec.activity(path, Toggles(toggles, stats["cycles"], paths))
+            p = rec.price(act)
+            out["workloads"][wname] = {"data_pj_per_cycle": pj_per_cycle(p) - out["clock_pj"],
+                                       "sources_found": found, "sources_missing": missing}
+        print(f"  priced {out['path']}: clock {out['clock_pj']:.2f} pJ/cycle, data "
+              + ", ".join(f"{w} {v['data_pj_per_cycle']:.2f}" for w, v in out["workloads"].items())
+              + f" pJ/cycle, {out['workloads'][next(iter(runs))]['sources_missing']} sources unmatched",
+              file=sys.stderr, flush=True)
+        return out
+
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        instances = list(pool.map(price_instance, all_instances))
+    # per block
+    area = {r["derived"]: r["area_um2"] for r in silicon_cost["records"]}
+    blocks = {}
+    first = next(iter(WORKLOADS))
+    for inst in instances:
+        bname, action = block_of(inst["base"], inst["path"])
+        b = blocks.setdefault(bname, {"name": bname, "action": action, "instances": [], "area_um2": 0.0,
+                                      "leakage_nw": 0.0, "clock_pj_per_cycle": 0.0, "flops": 0,
+                                      "data_pj": {w: 0.0 for w in WORKLOADS}, "unmatched_sources": 0,
+                                      "sources": 0})
+        b["instances"].append(inst["path"])
+        b["area_um2"] += area[inst["record"]]
+        b["leakage_nw"] += inst["leakage_nw"]
+        b["clock_pj_per_cycle"] += inst["clock_pj"]
+        b["flops"] += inst["flops"]
+        for w, v in inst["workloads"].items():
+            b["data_pj"][w] += v["data_pj_per_cycle"] * runs[w][0]["cycles"]
+            if w == first:
+                b["unmatched_sources"] += v["sources_missing"]
+                b["sources"] += v["sources_missing"] + v["sources_found"]
+    acts = {w: actions(runs[w][0]) for w in WORKLOADS}
+    validation = []
+    for b in blocks.values():
+        n = acts[first][b["action"]]
+        b["pj_per_action"] = b["data_pj"][first] / n if n else 0.0
+        for w in WORKLOADS:
+            predicted = b["pj_per_action"] * acts[w][b["action"]]
+            validation.append({"workload": w, "block": b["name"], "direct_pj": round(b["data_pj"][w], 1),
+                               "predicted_pj": round(predicted, 1),
+                               "error": round(predicted / b["data_pj"][w] - 1, 4) if b["data_pj"][w] else None})
+    for w in WORKLOADS:
+        direct = sum(b["data_pj"][w] for b in blocks.values())
+        predicted = sum(b["pj_per_action"] * acts[w][b["action"]] for b in blocks.values())
+        validation.append({"workload": w, "block": "unit", "direct_pj": round(direct, 1),
+                           "predicted_pj": round(predicted, 1), "error": round(predicted / direct - 1, 4)})
+    order = [n for n, _, _ in BLOCKS]
+    block_list = sorted(blocks.values(), key=lambda b: (order.index(re.sub(r"\d+$", "", b["name"])), b["name"]))
+    for b in block_list:
+        b["area_um2"] = round(b["area_um2"], 1)
+        b["leakage_nw"] = round(b["leakage_nw"], 2)
+        b["clock_pj_per_cycle"] = round(b["clock_pj_per_cycle"], 4)
+        b["pj_per_action"] = round(b["pj_per_action"], 4)
+        b["data_pj"] = {w: round(v, 1) for w, v in b["data_pj"].items()}
+    return {
+        "schema": SCHEMA, "name": name, "variant": variant, "params": params,
+        "sources_digest": cost_records.sources_digest(REPO / "rtl"), "library": str(lib.source),
+        "library_sha256": lib.digest, **silicon.tool_versions(),
+        "area_mm2": silicon_cost["area_mm2"], "clock_ns": silicon_cost["clock_ns"],
+        "clock_mhz": silicon_cost["clock_mhz"],
+        "int_blocks": sum(1 for b in block_list if b["name"].startswith("int")),
+        "actions": ACTIONS,
+        "clock_gate": clock_gate(lib, Path(work_root) / "icg"),
+        "workloads": {w: {"args": [a.replace("/usr/share/assimp/models/", "") for a in WORKLOADS[w]],
+                          "counts": acts[w]} for w in WORKLOADS},
+        "blocks": block_list, "validation": validation,
+        "seconds": round(time.monotonic() - start),
+    }
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(prog="energy.py", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--tessim", required=True, help="a tessim whose RTL build was Verilated with coverage")
+    ap.add_argument("--variant", default="n2", help="its RTL build (default n2)")
+    ap.add_argument("-chparam", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
+                    help="a tess_unit parameter of that build (default: tess_pkg's)")
+    ap.add_argument("--name", help="the result's name (default: the build's)")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--work", default=str(REPO / "build-energy"), help="mapped netlists and OpenSTA runs")
+    args = ap.parse_args(argv)
+    params = {k: int(v) for k, v in args.chparam}
+    try:
+        result = characterize(args.tessim, args.variant, params, args.name or args.variant, args.jobs, args.work)
+    except (EnergyError, silicon.SiliconError, gate_activity.NetlistError) as e:
+        print(f"energy.py: error: {e}", file=sys.stderr)
+        return 1
+    OUT.mkdir(parents=True, exist_ok=True)
+    out = OUT / f"{result['name']}.json"
+    partial = out.with_name(out.name + ".tmp")
+    partial.write_text(json.dumps(result, indent=1) + "\n")
+    partial.replace(out)
+    print(f"{out.relative_to(REPO)}: {result['seconds']} s")
+    for v in result["validation"]:
+        print(f"  {v['workload']:<16} {v['block']:<11} direct {v['direct_pj'] / 1e6:10.4f} uJ"
+              f"  predicted {v['predicted_pj'] / 1e6:10.4f} uJ  {100 * v['error'] if v['error'] is not None else 0:+6.1f} %")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
