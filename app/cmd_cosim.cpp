@@ -139,7 +139,8 @@ int run(const CosimArgs& a, const ConfigFlags& flags) {
     if (a.random_count == 0) throw InputError("command line", "--partitioning", "'mixed' needs --random");
     pattern_options.partitioning = "integer";
   }
-  std::optional<TessSettings> pattern = pattern_options.settings("cosim", cfg.tess_factor);
+  std::optional<TessSettings> pattern =
+      pattern_options.settings("cosim", cfg.tess_factor, flags.overrides().contains("tess_factor"));
   if (a.pattern.silhouette_given() && a.random_count > 0)
     throw InputError("command line", "--silhouette", "needs a mesh; --random draws every edge's alpha (a build that takes it)");
   if (a.pattern.silhouette_given() && !cfg.format.takes_alpha())

@@ -77,7 +77,7 @@ void run_power(const PowerArgs& a, const ConfigFlags& flags) {
                          "); scripts/energy.py makes one from a coverage build of its RTL (docs/silicon.md, Energy: "
                          "about 40 minutes on two cores)");
   check_output_paths({{"--json", a.json}}, {{"MESH", a.mesh}, {"--config", flags.config_file()}, {"--energy", a.energy}});
-  std::optional<TessSettings> pattern = a.pattern.settings("power", cfg.tess_factor);
+  std::optional<TessSettings> pattern = a.pattern.settings("power", cfg.tess_factor, flags.overrides().contains("tess_factor"));
   const Mesh mesh = load_mesh(a.mesh);
   const std::shared_ptr<const MeshSilhouette> silhouette = a.pattern.silhouette_for(pattern, cfg.tess_factor, mesh);
   if (!cfg.cpg_tags) warn_tags_ignored(mesh, "power");

@@ -190,7 +190,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   }
   check_output_paths({{"-o", a.output}, {"--trace", a.trace}, {"--stats", a.stats}},
                      {{"MESH", a.mesh}, {"--config", flags.config_file()}});
-  std::optional<TessSettings> pattern = a.pattern.settings("sim", cfg.tess_factor);
+  std::optional<TessSettings> pattern = a.pattern.settings("sim", cfg.tess_factor, flags.overrides().contains("tess_factor"));
   if (pattern && cfg.format.bary_bits < 16)
     throw InputError(flags.config_file().empty() ? "command line" : flags.config_file(), "bary_bits",
                      "the D3D11 pattern's points are 16.16: it needs bary_bits >= 16, not " +

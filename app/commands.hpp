@@ -93,6 +93,8 @@ struct PatternOptions {
   AdaptiveOptions adaptive;
   std::string silhouette;  // --silhouette eye=x,y,z[,beta=B] | camera[,beta=B]
   const CLI::Option* silhouette_option = nullptr;  // set by add_pattern_options
+  const CLI::Option* factor_option = nullptr;      // -L, set by add_pattern_options
+  bool factor_given = false;  // -L on the command line of sim, cosim or power (their -L is a parameter)
 
   bool silhouette_given() const { return !silhouette.empty() || (silhouette_option && silhouette_option->count() > 0); }
   DisplaceOptions displace;  // set by add_pattern_options
@@ -130,9 +132,10 @@ struct UnitPatternOptions {
 
   bool given() const { return !partitioning.empty() || !outer.empty() || !inner.empty() || adaptive.given(); }
   // std::nullopt: the uniform pattern. Otherwise the D3D11 settings, every factor L unless
-  // --outer or --adaptive says otherwise. Checked before any mesh is read: InputError(command,
-  // option, reason).
-  std::optional<TessSettings> settings(const char* command, int L) const;
+  // --outer or --adaptive says otherwise (an L given on the command line, `L_given`, is then
+  // refused: it would be ignored). Checked before any mesh is read: InputError(command, option,
+  // reason).
+  std::optional<TessSettings> settings(const char* command, int L, bool L_given = false) const;
 };
 void add_unit_pattern_options(CLI::App& cmd, UnitPatternOptions& options, const char* command);
 

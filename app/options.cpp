@@ -299,11 +299,11 @@ CLI::Option* add_silhouette_option(CLI::App& cmd, std::string& text, bool unit) 
 }
 
 void add_pattern_options(CLI::App& cmd, PatternOptions& o, const char* command) {
-  cmd.add_option("-L,--tess-factor,--factor", o.factor,
-                 "Tessellation factor: segments per edge (1..64) of the uniform pattern, or every factor of the "
-                 "D3D11 pattern with --partitioning")
-      ->transform(number_check<int>(kCommandLine, "-L", "1..64"))
-      ->capture_default_str();
+  o.factor_option = cmd.add_option("-L,--tess-factor,--factor", o.factor,
+                                   "Tessellation factor: segments per edge (1..64) of the uniform pattern, or every "
+                                   "factor of the D3D11 pattern with --partitioning")
+                        ->transform(number_check<int>(kCommandLine, "-L", "1..64"))
+                        ->capture_default_str();
   cmd.add_option("--partitioning", o.partitioning,
                  "D3D11 pattern spacing: integer, pow2, fractional_odd, fractional_even (default: the uniform "
                  "pattern; integer with --outer or --adaptive)");
@@ -460,6 +460,12 @@ TessSettings PatternOptions::settings(const char* command) const {
   if (fixed && adaptive.given())  // name the option given: --inner alone is one too
     throw InputError(kCommandLine, outer.empty() ? "--inner" : "--outer", "cannot be combined with --adaptive");
   if (!inner.empty() && outer.empty()) throw InputError(kCommandLine, "--inner", "needs --outer");
+  // -L sets every factor of the uniform pattern and of --partitioning alone; beside --outer or
+  // --adaptive every patch takes its factors from them, and the L given would be ignored.
+  if ((factor_given || (factor_option && factor_option->count() > 0)) && (fixed || adaptive.given()))
+    throw InputError(kCommandLine, "-L",
+                     std::string("has no effect with ") + (fixed ? "--outer" : "--adaptive") +
+                         " (every patch takes its factors from it)");
   adaptive.check_given_alone();
   if (partitioning.empty() && !fixed && !adaptive.given()) {  // the uniform pattern
     if (silhouette_given()) s.silhouette = parse_silhouette_option(silhouette);
@@ -504,7 +510,7 @@ void add_unit_pattern_options(CLI::App& cmd, UnitPatternOptions& o, const char* 
   o.silhouette_option = add_silhouette_option(cmd, o.silhouette, true);
 }
 
-std::optional<TessSettings> UnitPatternOptions::settings(const char* command, int L) const {
+std::optional<TessSettings> UnitPatternOptions::settings(const char* command, int L, bool L_given) const {
   if (!given()) {
     adaptive.check_given_alone();
     if (silhouette_given() && parse_silhouette_option(silhouette).eye_from_camera)
@@ -513,6 +519,7 @@ std::optional<TessSettings> UnitPatternOptions::settings(const char* command, in
   }
   PatternOptions p;
   p.factor = L;
+  p.factor_given = L_given;
   p.partitioning = partitioning;
   p.outer = outer;
   p.inner = inner;

@@ -2,11 +2,11 @@
 """Energy of a configuration of the unit on the OSU 0.18 um cells, from the switching activity of
 real workloads (docs/silicon.md, Energy).
 
-    energy.py --tessim BIN [-chparam NAME VALUE]... [--variant NAME] [--name NAME] [--jobs J]
+    energy.py --tessim BIN [--variant NAME] [--name NAME] [--jobs J] [--work DIR]
 
-BIN must be a tessim whose RTL build NAME (default n2) was Verilated with toggle coverage
-(`cmake -DTESSIM_RTL_COVERAGE=ON -DTESSIM_RTL_VARIANTS=NAME`), and the -chparam values must be
-that build's parameters. For each workload of WORKLOADS the RTL runs in lock-step with the cycle
+BIN must be a tessim whose RTL build NAME (default n2, rtl/builds.json) was Verilated with toggle
+coverage (`cmake -DTESSIM_RTL_COVERAGE=ON -DTESSIM_RTL_VARIANTS=NAME`); the configuration is that
+build's. For each workload of WORKLOADS the RTL runs in lock-step with the cycle
 model (`tessim cosim`), which counts every register and port bit's toggles in every instance, and
 the cycle model's statistics give the run's action counts (INT operations, CPG cycles, patches,
 vertices). Each record of the configuration (scripts/silicon.py) is mapped onto the library,
@@ -15,9 +15,10 @@ through its cells (scripts/gate_activity.py) and OpenSTA prices it: leakage, the
 per cycle (flip-flops clocked, nothing else switching) and the data's energy per cycle.
 
 The records are grouped into the blocks a user reads (BLOCKS), and each block's data energy is
-divided by its action count in the first workload: an energy per action (Accelergy's model:
-energy = actions x energy per action). The other workloads check that model: their own
-propagated activity against the actions times the first workload's energy per action.
+divided by its action count in the calibrating workload of each pattern class (uniform, Direct3D
+11): an energy per action (Accelergy's model: energy = actions x energy per action). The checking
+workloads test that model: their own propagated activity against their actions times the
+calibrated energies per action.
 
 Writes docs/results/silicon/energy/NAME.json, which `tessim power` reads (embedded at build time).
 """
@@ -29,7 +30,6 @@ import os
 import re
 import subprocess
 import sys
-import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
@@ -45,18 +45,32 @@ OUT = REPO / "docs" / "results" / "silicon" / "energy"
 SCHEMA = 1
 WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
 CAMERA = "eye=2.6,1.3,-2.9,target=0,0.6,-0.2"
-# The workloads, the first one calibrating the energy per action: Wuson at L = 8 and one adaptive
-# view of it (the adaptive study's middle distance), quadratic normals, K = 8.
+FAR_CAMERA = "eye=5.2,2.0,-5.6,target=0,0.6,-0.2"
+ADAPTIVE = ["--adaptive", "screen", "--pixels-per-segment", "6", "--partitioning", "integer"]
+COMMON = ["--normals", "quadratic", "--gpe-cycles", "8"]
+# The workloads: name -> (arguments, pattern class, role). The energy per action of a block is
+# calibrated per pattern class (the uniform pattern or Direct3D 11's) on the class's calibrating
+# workload and checked on the other: Wuson at L = 8 and at L = 4, and two adaptive views of it
+# (the adaptive study's middle and far cameras), quadratic normals, K = 8.
 WORKLOADS = {
-    "wuson_l8": [WUSON, "-L", "8", "--normals", "quadratic", "--gpe-cycles", "8"],
-    "wuson_adaptive": [WUSON, "--adaptive", "screen", "--camera", CAMERA, "--pixels-per-segment", "6",
-                       "--partitioning", "integer", "--normals", "quadratic", "--gpe-cycles", "8"],
+    "wuson_l8": ([WUSON, "-L", "8", *COMMON], "uniform", "calibrates"),
+    "wuson_adaptive": ([WUSON, *ADAPTIVE, "--camera", CAMERA, *COMMON], "d3d11", "calibrates"),
+    "wuson_l4": ([WUSON, "-L", "4", *COMMON], "uniform", "checks"),
+    "wuson_adaptive_far": ([WUSON, *ADAPTIVE, "--camera", FAR_CAMERA, *COMMON], "d3d11", "checks"),
 }
+CLASSES = ("uniform", "d3d11")
+
+
+def pattern_class(stats):
+    """A run's pattern class from its statistics: the uniform pattern or Direct3D 11's."""
+    return "uniform" if stats["workload"]["pattern"] == "uniform" else "d3d11"
+
+
 # Blocks: (name, the records' module names, what counts one action). A block holds every instance
 # of its modules, except the INT blocks, one block each ("int0", "int1", ...).
 BLOCKS = [
     ("cpg", ("tess_cpg_array", "tess_cpg", "tess_cpg_edge", "tess_div", "tess_isqrt"), "cpg_busy"),
-    ("fsu", ("tess_fsu", "tess_fsu_edge"), "triangles"),
+    ("fsu", ("tess_fsu", "tess_fsu_edge"), "d3d11_triangles"),
     ("cp_buffers", ("tess_cpbuf",), "triangles"),
     ("te", ("tess_te",), "int_ops"),
     ("dpg", ("tess_dpg",), "vertices"),
@@ -67,6 +81,7 @@ BLOCKS = [
 ACTIONS = {
     "cpg_busy": "cycles the CPG computes (statistics cpg.busy)",
     "triangles": "triangles taken in",
+    "d3d11_triangles": "triangles taken in with Direct3D 11 factors (the FSU sets their pattern up)",
     "int_ops": "INT operations issued, all blocks (int.busy)",
     "vertices": "vertices out",
     "int_busy": "the INT block's operations (int.blocks[i].busy)",
@@ -85,34 +100,33 @@ def run(cmd, env=None):
     return proc
 
 
-def workload_run(tessim, variant, name, args, work):
-    """(statistics, {instance path: {signal bit: toggles}}) of one workload."""
-    dat = Path(work) / f"{name}.dat"
-    env = dict(os.environ, TESSIM_RTL_COVERAGE_FILE=str(dat))
-    start = time.monotonic()
-    run([tessim, "cosim", *args, "--variant", variant], env)
-    stats_path = Path(work) / f"{name}.stats.json"
-    run([tessim, "sim", *args, "--int-blocks", str(int_blocks_of(tessim, variant)), "--stats", str(stats_path)])
-    files = sorted(Path(work).glob(f"{name}.dat.*"))
+def workload_run(tessim, build, name, args, work):
+    """(statistics, toggles) of one workload on an RTL build (tessim schema's entry), kept in WORK
+    and reused while the tessim binary is older than them."""
+    work = Path(work)
+    work.mkdir(parents=True, exist_ok=True)
+    stats_path = work / f"{name}.stats.json"
+    binary_time = Path(tessim).stat().st_mtime
+    if not (stats_path.exists() and stats_path.stat().st_mtime > binary_time and list(work.glob(f"{name}.dat.*"))):
+        for old in work.glob(f"{name}.dat.*"):
+            old.unlink()
+        env = dict(os.environ, TESSIM_RTL_COVERAGE_FILE=str(work / f"{name}.dat"))
+        start = time.monotonic()
+        run([tessim, "cosim", *args, "--variant", build["name"]], env)
+        run([tessim, "sim", *args, *build["flags"], "--stats", str(stats_path)])
+        print(f"  {name}: {time.monotonic() - start:.0f} s", file=sys.stderr, flush=True)
+    files = sorted(work.glob(f"{name}.dat.*"))
     if not files:
         raise EnergyError(f"{tessim} wrote no coverage for {name}: is its RTL build Verilated with coverage?")
-    toggles = read_toggles(files)
-    print(f"  {name}: {time.monotonic() - start:.0f} s", file=sys.stderr, flush=True)
-    return json.loads(stats_path.read_text()), toggles
+    return json.loads(stats_path.read_text()), read_toggles(files)
 
 
-_BUILDS = {}
-
-
-def int_blocks_of(tessim, variant):
-    if variant not in _BUILDS:
-        schema = json.loads(run([tessim, "schema"]).stdout)
-        builds = schema.get("rtl_builds", {}).get("builds", [])
-        match = [b for b in builds if b["name"] == variant]
-        if not match:
-            raise EnergyError(f"{tessim} has no RTL build {variant}")
-        _BUILDS[variant] = dict(match[0]["parameters"])
-    return _BUILDS[variant].get("IntBlocks", 2)
+def rtl_build(tessim, variant):
+    builds = json.loads(run([tessim, "schema"]).stdout)["rtl_builds"]
+    match = [b for b in builds if b["name"] == variant]
+    if not match:
+        raise EnergyError(f"{tessim} has no RTL build {variant}")
+    return match[0]
 
 
 def read_toggles(files):
@@ -319,13 +333,60 @@ class RecordPower:
                 guess[q] = min(act.get(d_net, (0.5, mean))[1], 1.0) if d_net else mean
         return act, found, missing
 
-    def price(self, act):
-        return gate_activity.run_power(self.lib.path, self.path, act, self.netlist, self.work, PERIOD_NS)
+    def price(self, act, instance):
+        """OpenSTA's power of the record with `act`, in a directory of the instance's own (two
+        instances of a record are priced at once)."""
+        work = Path(self.work) / re.sub(r"[^\w.-]", "_", instance or "top")
+        work.mkdir(parents=True, exist_ok=True)
+        return gate_activity.run_power(self.lib.path, self.path, act, self.netlist, work, PERIOD_NS)
 
 
 def pj_per_cycle(power):
     """Dynamic energy per clock cycle (pJ) of an OpenSTA power result."""
     return (power["internal_w"] + power["switching_w"]) * power["period_ns"] * 1e3
+
+
+LONE_FLOP = """\
+module lone(clk_i, d_i, q_o);
+  input clk_i;
+  input d_i;
+  output q_o;
+  DFFPOSX1 r (.CLK(clk_i), .D(d_i), .Q(q_o));
+endmodule
+"""
+
+
+def clock_correction(lib, work):
+    """Liberty's energy of a clock pin per cycle over OpenSTA's, for a lone DFFPOSX1.
+
+    Per cycle a flip-flop's clock pin rises once and falls once: the Liberty tables' rise_power
+    plus fall_power (at the ideal clock's zero slew, extrapolated from the tables' first two
+    points, as OpenSTA looks tables up). OpenSTA 2.0.17 reports twice that for a clock pin while
+    it prices a data pin at the tables' mean per transition (checked on the D pin); the flow
+    scales every clock-only figure by this ratio."""
+    work = Path(work)
+    work.mkdir(parents=True, exist_ok=True)
+    (work / "lone.v").write_text(LONE_FLOP)
+    still = {"internal_w": 0.0}
+    script = work / "lone.tcl"
+    script.write_text(f"read_liberty {lib.path}\nread_verilog {work / 'lone.v'}\nlink_design lone\n"
+                      f"create_clock -name clk -period {PERIOD_NS} [get_ports clk_i]\n"
+                      "sta::set_power_input_activity 0 0.5\nreport_power -digits 6\nexit\n")
+    proc = subprocess.run(["sta", "-no_init", "-no_splash", "-exit", str(script)], capture_output=True, text=True)
+    m = re.search(r"^Total\s+([\d.eE+-]+)\s+([\d.eE+-]+)", proc.stdout, re.M)
+    if proc.returncode != 0 or not m:
+        raise EnergyError(f"OpenSTA failed on a lone flip-flop:\n{proc.stdout[-800:]}")
+    still["internal_w"] = float(m.group(1)) + float(m.group(2))
+    cell = re.search(r"cell \(DFFPOSX1\)(.*?)(?=^\s*cell\s*\()", lib.text, re.S | re.M).group(1)
+    clk = re.search(r"pin\(CLK\)(.*?)pin\(D\)", cell, re.S).group(1)
+    energy = 0.0
+    for edge in ("rise_power", "fall_power"):
+        table = re.search(edge + r"\(\w+\)\s*\{\s*index_1\s*\(\"([^\"]*)\"\);\s*values\s*\(\"([^\"]*)\"\)", clk, re.S)
+        x = [float(v) for v in table.group(1).split(",")]
+        y = [float(v) for v in table.group(2).split(",")]
+        energy += y[0] - x[0] * (y[1] - y[0]) / (x[1] - x[0])  # at slew 0
+    measured = still["internal_w"] * PERIOD_NS * 1e3  # pJ per cycle
+    return {"liberty_pj": round(energy, 6), "opensta_pj": round(measured, 6), "factor": round(energy / measured, 6)}
 
 
 ICG = """\
@@ -343,7 +404,7 @@ endmodule
 FLOPS_PER_GATE = 32  # flip-flops behind one clock gate (a leaf of the clock tree)
 
 
-def clock_gate(lib, work):
+def clock_gate(lib, work, factor):
     """A latch-based clock gate from the library's cells (a LATCH open while the clock is low, an
     AND2X2, an inverter): its area, leakage and energy per cycle with the enable still; a gated
     flip-flop's clock pin costs nothing while the gate is shut."""
@@ -361,13 +422,15 @@ def clock_gate(lib, work):
     cells = {"LATCH": 1, "AND2X2": 1, "INVX1": 1}
     return {"cells": cells, "area_um2": sum(lib.cells[c]["area"] * n for c, n in cells.items()),
             "leakage_nw": sum(lib.cells[c]["leakage_nw"] * n for c, n in cells.items()),
-            "pj_per_cycle": round((float(m.group(1)) + float(m.group(2))) * PERIOD_NS * 1e3, 6),
+            "pj_per_cycle": round((float(m.group(1)) + float(m.group(2))) * PERIOD_NS * 1e3 * factor, 6),
             "flops_per_gate": FLOPS_PER_GATE}
 
 
 def actions(stats):
     """A run's action counts (ACTIONS) from its statistics; the INT blocks' one by one."""
+    d3d11 = pattern_class(stats) == "d3d11"
     out = {"cpg_busy": stats["cpg"]["busy"], "triangles": stats["triangles_in"], "int_ops": stats["int"]["busy"],
+           "d3d11_triangles": stats["triangles_in"] if d3d11 else 0,
            "vertices": stats["vertices_out"], "cycles": stats["cycles"]}
     for i, b in enumerate(stats["int"]["blocks"]):
         out[f"int_busy{i}"] = b["busy"]
@@ -385,22 +448,23 @@ def block_of(base, path):
     raise EnergyError(f"record {base} belongs to no block of energy.py's BLOCKS")
 
 
-def characterize(tessim, variant, params, name, jobs, work_root):
+def characterize(tessim, variant, name, jobs, work_root):
     lib = silicon.library()
-    params = cost_records.normalized(params, REPO / "rtl")
+    build = rtl_build(tessim, variant)
+    params = cost_records.normalized(build["parameters"], REPO / "rtl")
     start = time.monotonic()
     silicon_cost = silicon.cost(params, require_cached=True)
     modules, top, counts, mapped = map_netlists(params, lib, Path(work_root) / "netlists", jobs)
     runs = {}
-    with tempfile.TemporaryDirectory(prefix="tessim-energy-") as tmp:
-        for wname, args in WORKLOADS.items():
-            runs[wname] = workload_run(tessim, variant, wname, args, tmp)
+    for wname, (args, _, _) in WORKLOADS.items():
+        runs[wname] = workload_run(tessim, build, wname, args, Path(work_root) / "runs" / variant)
     functions = gate_activity.liberty_functions(lib.text)
     tables = gate_activity.cell_tables(functions)
     records = {}
     for rname, (base, n, key, path, _) in mapped.items():
         records[rname] = RecordPower(lib, path, functions, tables, Path(work_root) / "power" / key[:24])
 
+    correction = clock_correction(lib, Path(work_root) / "lone")
     all_instances = instance_paths(modules, top)
     paths = [p for p, _ in all_instances]
 
@@ -409,15 +473,17 @@ def characterize(tessim, variant, params, name, jobs, work_root):
         rec = records[rname]
         out = {"path": path or "tess_unit", "record": rname, "base": modules[rname].base}
         act, _, _ = rec.activity(path, None)
-        still = rec.price(act)
-        out["clock_pj"] = pj_per_cycle(still)
+        still = rec.price(act, path)
+        out["clock_pj"] = pj_per_cycle(still) * correction["factor"]
         out["leakage_nw"] = still["leakage_w"] * 1e9
         out["flops"] = len(rec.netlist.flops)
         out["workloads"] = {}
         for wname, (stats, toggles) in runs.items():
             act, found, missing = rec.activity(path, Toggles(toggles, stats["cycles"], paths))
-            p = rec.price(act)
-            out["workloads"][wname] = {"data_pj_per_cycle": pj_per_cycle(p) - out["clock_pj"],
+            p = rec.price(act, path)
+            flops = [q for _, q in rec.netlist.flops]
+            out["workloads"][wname] = {"data_pj_per_cycle": pj_per_cycle(p) - pj_per_cycle(still),
+                                       "flop_activity": (sum(act[q][1] for q in flops) / len(flops)) if flops else 0.0,
                                        "sources_found": found, "sources_missing": missing}
         print(f"  priced {out['path']}: clock {out['clock_pj']:.2f} pJ/cycle, data "
               + ", ".join(f"{w} {v['data_pj_per_cycle']:.2f}" for w, v in out["workloads"].items())
@@ -430,12 +496,12 @@ def characterize(tessim, variant, params, name, jobs, work_root):
     # per block
     area = {r["derived"]: r["area_um2"] for r in silicon_cost["records"]}
     blocks = {}
-    first = next(iter(WORKLOADS))
     for inst in instances:
         bname, action = block_of(inst["base"], inst["path"])
         b = blocks.setdefault(bname, {"name": bname, "action": action, "instances": [], "area_um2": 0.0,
                                       "leakage_nw": 0.0, "clock_pj_per_cycle": 0.0, "flops": 0,
                                       "data_pj": {w: 0.0 for w in WORKLOADS}, "unmatched_sources": 0,
+                                      "clock_floor_pj_per_cycle": {w: 0.0 for w in WORKLOADS},
                                       "sources": 0})
         b["instances"].append(inst["path"])
         b["area_um2"] += area[inst["record"]]
@@ -444,32 +510,46 @@ def characterize(tessim, variant, params, name, jobs, work_root):
         b["flops"] += inst["flops"]
         for w, v in inst["workloads"].items():
             b["data_pj"][w] += v["data_pj_per_cycle"] * runs[w][0]["cycles"]
-            if w == first:
+            b["clock_floor_pj_per_cycle"][w] += inst["clock_pj"] * v["flop_activity"]
+            if w == next(iter(WORKLOADS)):
                 b["unmatched_sources"] += v["sources_missing"]
                 b["sources"] += v["sources_missing"] + v["sources_found"]
     acts = {w: actions(runs[w][0]) for w in WORKLOADS}
+    calibrating = {cls: next(w for w, (_, c, role) in WORKLOADS.items() if c == cls and role == "calibrates")
+                   for cls in CLASSES}
+    for w, (_, cls, _) in WORKLOADS.items():
+        if pattern_class(runs[w][0]) != cls:
+            raise EnergyError(f"workload {w} ran the {pattern_class(runs[w][0])} pattern, not {cls}")
     validation = []
+
+    def predicted(b, w):
+        return b["pj_per_action"][WORKLOADS[w][1]] * acts[w][b["action"]]
+
     for b in blocks.values():
-        n = acts[first][b["action"]]
-        b["pj_per_action"] = b["data_pj"][first] / n if n else 0.0
+        b["pj_per_action"] = {}
+        for cls, w in calibrating.items():
+            n = acts[w][b["action"]]
+            b["pj_per_action"][cls] = b["data_pj"][w] / n if n else 0.0
         for w in WORKLOADS:
-            predicted = b["pj_per_action"] * acts[w][b["action"]]
-            validation.append({"workload": w, "block": b["name"], "direct_pj": round(b["data_pj"][w], 1),
-                               "predicted_pj": round(predicted, 1),
-                               "error": round(predicted / b["data_pj"][w] - 1, 4) if b["data_pj"][w] else None})
+            validation.append({"workload": w, "block": b["name"], "role": WORKLOADS[w][2],
+                               "direct_pj": round(b["data_pj"][w], 1), "predicted_pj": round(predicted(b, w), 1),
+                               "error": round(predicted(b, w) / b["data_pj"][w] - 1, 4) if b["data_pj"][w] else None})
     for w in WORKLOADS:
         direct = sum(b["data_pj"][w] for b in blocks.values())
-        predicted = sum(b["pj_per_action"] * acts[w][b["action"]] for b in blocks.values())
-        validation.append({"workload": w, "block": "unit", "direct_pj": round(direct, 1),
-                           "predicted_pj": round(predicted, 1), "error": round(predicted / direct - 1, 4)})
+        model = sum(predicted(b, w) for b in blocks.values())
+        validation.append({"workload": w, "block": "unit", "role": WORKLOADS[w][2], "direct_pj": round(direct, 1),
+                           "predicted_pj": round(model, 1), "error": round(model / direct - 1, 4)})
     order = [n for n, _, _ in BLOCKS]
     block_list = sorted(blocks.values(), key=lambda b: (order.index(re.sub(r"\d+$", "", b["name"])), b["name"]))
     for b in block_list:
         b["area_um2"] = round(b["area_um2"], 1)
         b["leakage_nw"] = round(b["leakage_nw"], 2)
         b["clock_pj_per_cycle"] = round(b["clock_pj_per_cycle"], 4)
-        b["pj_per_action"] = round(b["pj_per_action"], 4)
+        b["pj_per_action"] = {c: round(v, 4) for c, v in b["pj_per_action"].items()}
         b["data_pj"] = {w: round(v, 1) for w, v in b["data_pj"].items()}
+        # The clock if each flip-flop were clocked only in the cycles its value changes: the floor
+        # of enable-based gating (each flip-flop's clock energy times its output's activity).
+        b["clock_floor_pj_per_cycle"] = {w: round(v, 4) for w, v in b["clock_floor_pj_per_cycle"].items()}
     return {
         "schema": SCHEMA, "name": name, "variant": variant, "params": params,
         "sources_digest": cost_records.sources_digest(REPO / "rtl"), "library": str(lib.source),
@@ -478,9 +558,10 @@ def characterize(tessim, variant, params, name, jobs, work_root):
         "clock_mhz": silicon_cost["clock_mhz"],
         "int_blocks": sum(1 for b in block_list if b["name"].startswith("int")),
         "actions": ACTIONS,
-        "clock_gate": clock_gate(lib, Path(work_root) / "icg"),
-        "workloads": {w: {"args": [a.replace("/usr/share/assimp/models/", "") for a in WORKLOADS[w]],
-                          "counts": acts[w]} for w in WORKLOADS},
+        "clock_correction": correction,
+        "clock_gate": clock_gate(lib, Path(work_root) / "icg", correction["factor"]),
+        "workloads": {w: {"args": [a.replace("/usr/share/assimp/models/", "") for a in args], "class": cls,
+                          "role": role, "counts": acts[w]} for w, (args, cls, role) in WORKLOADS.items()},
         "blocks": block_list, "validation": validation,
         "seconds": round(time.monotonic() - start),
     }
@@ -490,15 +571,12 @@ def main(argv):
     ap = argparse.ArgumentParser(prog="energy.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("--tessim", required=True, help="a tessim whose RTL build was Verilated with coverage")
     ap.add_argument("--variant", default="n2", help="its RTL build (default n2)")
-    ap.add_argument("-chparam", nargs=2, action="append", default=[], metavar=("NAME", "VALUE"),
-                    help="a tess_unit parameter of that build (default: tess_pkg's)")
     ap.add_argument("--name", help="the result's name (default: the build's)")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", default=str(REPO / "build-energy"), help="mapped netlists and OpenSTA runs")
     args = ap.parse_args(argv)
-    params = {k: int(v) for k, v in args.chparam}
     try:
-        result = characterize(args.tessim, args.variant, params, args.name or args.variant, args.jobs, args.work)
+        result = characterize(args.tessim, args.variant, args.name or args.variant, args.jobs, args.work)
     except (EnergyError, silicon.SiliconError, gate_activity.NetlistError) as e:
         print(f"energy.py: error: {e}", file=sys.stderr)
         return 1

@@ -4,21 +4,19 @@ library (docs/silicon.md, Energy).
 
 The netlist is Yosys's `write_verilog -noattr -noexpr` output of a record mapped onto the OSU
 0.18 um cells. Its sources are its input ports, the flip-flops' outputs and constants; every other
-net is driven by a combinational cell whose Liberty `function` is known. Given a toggle density
-(transitions per clock cycle) and a probability of being 1 for every source bit, the activity of
-every net follows by transition-density propagation (Najm 1993): with the inputs independent,
+net is driven by a combinational cell whose Liberty `function` is known. Given, for every source
+bit, the probability that it changes between consecutive cycles (its toggle density, from the
+RTL's toggle counts) and its probability of being 1, the activity of every net follows under the
+zero-delay, lag-one model: each cell's inputs are independent two-state chains, the output changes
+in a cycle when its value before and after differ,
 
-    P(y) = sum over input vectors v with f(v) = 1 of prod P(x_i = v_i)
-    D(y) = sum_i P(df/dx_i) D(x_i),   df/dx_i = f(x_i = 1) xor f(x_i = 0)
+    P(y = 1)     = sum over input vectors v with f(v) = 1 of prod P(x_i = v_i)
+    P(y changes) = sum over pairs (a, b) with f(a) != f(b) of prod P(x_i: a_i -> b_i)
 
-which is exact for a single input change per cycle and counts no glitches (zero delay). OpenSTA
-2.0.17 (Debian's) does not propagate activity through combinational cells, so the densities are
-computed here and annotated on every cell pin; OpenSTA then prices them with the Liberty internal
-energy tables, the pin and wire-load capacitances, and the clock.
-
-The propagation is linear in the source densities (the probabilities fixed), so the power of a
-record is its clock power plus a sum over its sources of density times a per-source energy; this
-is what lets a run's activity be priced from a few counts (scripts/energy.py).
+Densities stay at most one a cycle; glitches are not counted and reconvergent fan-out is taken as
+independent. OpenSTA 2.0.17 (Debian's) does not propagate activity through combinational cells,
+so the activities are computed here and annotated on every cell pin; OpenSTA then prices them with
+the Liberty internal energy tables, the pin and wire-load capacitances, and the clock.
 """
 
 import itertools
@@ -87,7 +85,9 @@ def python_expr(function):
 
 
 def cell_tables(functions):
-    """Cell -> {output pin: (inputs, truth table over 2^n input vectors)} for combinational cells."""
+    """Cell -> {output pin: (inputs, truth table, input vectors with output 1, pairs of input vectors
+    (before, after) whose outputs differ)} for combinational cells; a vector's bit i (from the
+    top) is input i."""
     tables = {}
     for cell, f in functions.items():
         if f["sequential"]:
@@ -101,40 +101,41 @@ def cell_tables(functions):
             table = []
             for bits in itertools.product((0, 1), repeat=len(used)):
                 table.append(eval(code, {}, {"v": dict(zip(used, bits))}) & 1)  # noqa: S307 (the library's own functions)
-            per[pin] = (used, table)
+            ones = [v for v, out in enumerate(table) if out]
+            diff = [(a, b) for a in range(len(table)) for b in range(len(table)) if table[a] != table[b]]
+            per[pin] = (used, table, ones, diff)
         tables[cell] = per
     return tables
 
 
-def propagate_cell(table, probs, dens):
-    """(P(y), D(y), [dD(y)/dD(x_i)]) of one output with truth table `table` over inputs with
-    probabilities `probs` and densities `dens`."""
+def propagate_cell(entry, probs, dens):
+    """(P(y = 1), P(y changes in a cycle)) of one cell output under the zero-delay, lag-one model:
+    each input is 1 with probability p and changes between consecutive cycles with probability d,
+    independently of the others; the output changes when its values before and after differ."""
+    used, table, ones, diff = entry
     n = len(probs)
+    stay = []  # per input: P(0->0), P(0->1), P(1->0), P(1->1)
+    for p, d in zip(probs, dens):
+        d = min(d, 2 * min(p, 1 - p))
+        stay.append(((1 - p) - d / 2, d / 2, d / 2, p - d / 2))
     p_one = 0.0
-    for index, value in enumerate(table):
-        if value:
-            w = 1.0
-            for i in range(n):
-                bit = (index >> (n - 1 - i)) & 1
-                w *= probs[i] if bit else 1.0 - probs[i]
-            p_one += w
-    sens = []
-    for i in range(n):
-        s = 0.0
-        step = 1 << (n - 1 - i)
-        for index, value in enumerate(table):
-            if (index >> (n - 1 - i)) & 1:
-                continue
-            if value != table[index | step]:
-                w = 1.0
-                for j in range(n):
-                    if j == i:
-                        continue
-                    bit = (index >> (n - 1 - j)) & 1
-                    w *= probs[j] if bit else 1.0 - probs[j]
-                s += w
-        sens.append(s)
-    return p_one, sum(s * d for s, d in zip(sens, dens)), sens
+    for v in ones:
+        w = 1.0
+        for i in range(n):
+            w *= probs[i] if (v >> (n - 1 - i)) & 1 else 1.0 - probs[i]
+        p_one += w
+    if not any(dens):
+        return p_one, 0.0
+    change = 0.0
+    for a, b in diff:
+        w = 1.0
+        for i in range(n):
+            shift = n - 1 - i
+            w *= stay[i][((a >> shift) & 1) * 2 + ((b >> shift) & 1)]
+            if w == 0.0:
+                break
+        change += w
+    return p_one, change
 
 
 def canonical(ref):
@@ -326,16 +327,15 @@ def propagate(netlist, tables, source):
         act[q] = source(q)
     for idx in netlist.order:
         ctype, inst, pins = netlist.comb[idx]
-        for out, (used, table) in tables[ctype].items():
+        for out, entry in tables[ctype].items():
             if out not in pins:
                 continue
             probs, dens = [], []
-            for i in used:
+            for i in entry[0]:
                 p, d = act.get(pins.get(i), (0.5, 0.0))
                 probs.append(p)
                 dens.append(d)
-            p, d, _ = propagate_cell(table, probs, dens)
-            act[pins[out]] = (p, d)
+            act[pins[out]] = propagate_cell(entry, probs, dens)
     return act
 
 
@@ -346,6 +346,9 @@ def power_script(lib_path, netlist_path, act, netlist, period_ns, top="rec"):
         lines.append(f"create_clock -name clk -period {period_ns} [get_ports clk_i]")
     else:
         lines.append(f"create_clock -name clk -period {period_ns}")
+    # Inputs in the clock's domain: OpenSTA prices a pin's activity per cycle of its clock, and
+    # gives nothing to logic no clock reaches (a record without flip-flops).
+    lines.append("set_input_delay 0 -clock clk [all_inputs]")
     lines.append("sta::set_power_input_activity 0 0.5")
     lines.append("proc a {p d y} { sta::set_power_pin_activity [get_pins $p] $d $y }")
     lines.append("proc i {p d y} { sta::set_power_input_port_activity [get_ports $p] $d $y }")

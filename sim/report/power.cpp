@@ -21,10 +21,14 @@ double number(const nlohmann::json& j, const char* key, const std::string& origi
   return j[key].get<double>();
 }
 
+// The run's pattern class: the uniform pattern or Direct3D 11's (scripts/energy.py, pattern_class).
+bool d3d11(const nlohmann::json& stats) { return stats["workload"]["pattern"].get<std::string>() != "uniform"; }
+
 // The action count of a block in a run's statistics.
 double actions(const nlohmann::json& stats, const std::string& action) {
   if (action == "cpg_busy") return stats["cpg"]["busy"].get<double>();
   if (action == "triangles") return stats["triangles_in"].get<double>();
+  if (action == "d3d11_triangles") return d3d11(stats) ? stats["triangles_in"].get<double>() : 0.0;
   if (action == "int_ops") return stats["int"]["busy"].get<double>();
   if (action == "vertices") return stats["vertices_out"].get<double>();
   if (action.rfind("int_busy", 0) == 0) {
@@ -80,7 +84,10 @@ EnergyCharacterization read_energy_characterization(const nlohmann::json& j, con
     p.area_um2 = number(b, "area_um2", origin, where);
     p.leakage_nw = number(b, "leakage_nw", origin, where);
     p.clock_pj_per_cycle = number(b, "clock_pj_per_cycle", origin, where);
-    p.pj_per_action = number(b, "pj_per_action", origin, where);
+    if (!b.contains("pj_per_action") || !b["pj_per_action"].is_object())
+      throw InputError(origin, where + ".pj_per_action", "missing or not an object of pattern classes");
+    p.pj_per_action_uniform = number(b["pj_per_action"], "uniform", origin, where + ".pj_per_action");
+    p.pj_per_action_d3d11 = number(b["pj_per_action"], "d3d11", origin, where + ".pj_per_action");
     p.flops = static_cast<int>(number(b, "flops", origin, where));
     c.blocks.push_back(p);
   }
@@ -128,7 +135,7 @@ nlohmann::json power_report(const nlohmann::json& stats, const EnergyCharacteriz
     const double b_leak_w = (b.leakage_nw + gates * c.gate.leakage_nw) * 1e-9;
     const double b_leak = b_leak_w * seconds * 1e12;  // pJ
     const double b_clock = b.clock_pj_per_cycle * clocked_cycles(stats, b, o.clock_gating) + gates * c.gate.pj_per_cycle * cycles;
-    const double b_data = b.pj_per_action * n;
+    const double b_data = (d3d11(stats) ? b.pj_per_action_d3d11 : b.pj_per_action_uniform) * n;
     const double b_energy = b_leak + b_clock + b_data;
     area += b_area;
     leak_pj += b_leak;

@@ -3,8 +3,9 @@
 //
 // scripts/energy.py characterizes a configuration once: each block's area and leakage, the
 // energy its clock costs every cycle, and its data energy per action (an INT operation, a CPG
-// cycle, a triangle, a vertex), measured from the RTL's toggles on real workloads propagated
-// through the mapped cells and priced by OpenSTA. The characterizations in
+// cycle, a triangle, a vertex; per pattern class, uniform or Direct3D 11), measured from the
+// RTL's toggles on real workloads propagated through the mapped cells and priced by OpenSTA.
+// The characterizations in
 // docs/results/silicon/energy/ are embedded at build time; a run's energy is then
 //   per block: leakage x time + clock energy x clocked cycles + energy per action x actions
 // with the actions taken from the run's statistics.
@@ -25,7 +26,8 @@ struct PowerBlock {
   double area_um2 = 0;
   double leakage_nw = 0;
   double clock_pj_per_cycle = 0;  // every flip-flop clocked, nothing else switching
-  double pj_per_action = 0;       // data energy per action
+  double pj_per_action_uniform = 0;  // data energy per action, uniform pattern
+  double pj_per_action_d3d11 = 0;    // ... Direct3D 11 pattern (the DPG walks rings, the FSU works)
   int flops = 0;
 };
 

@@ -3,6 +3,7 @@
 // computes, and conflicting or malformed options are input errors with nothing written.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -126,6 +127,37 @@ TEST(FactorsCli, FactorsThatCullEveryPatchAreRefused) {
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("command line: --outer: '0,3,3': every patch is culled"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// -L sets the factors of the uniform pattern and of --partitioning alone; beside --outer or
+// --adaptive each patch takes its factors from those, so an -L given would be ignored: refused by
+// name, in the reference commands and in the unit's, and nothing written.
+TEST(FactorsCli, FactorBesideOuterOrAdaptiveIsRefused) {
+  TempDir dir;
+  const fs::path out = dir.path() / "o.ply";
+  const std::string camera = "eye=0,0,6";
+  const std::vector<std::vector<std::string>> refused = {
+      {"tessellate", kSphere, "-L", "8", "--outer", "2,2,2", "-o", out.string()},
+      {"tessellate", kSphere, "-L", "8", "--adaptive", "screen", "--camera", camera, "-o", out.string()},
+      {"sim", kSphere, "-L", "3", "--outer", "2,2,2", "-o", out.string()},
+      {"sim", kSphere, "--tess-factor", "3", "--adaptive", "screen", "--camera", camera, "-o", out.string()},
+      {"power", kSphere, "-L", "3", "--outer", "2,2,2"},
+  };
+  for (const auto& args : refused) {
+    const auto r = run_tessim(args, dir.path());
+    EXPECT_EQ(r.status, 2) << args[0] << " " << args[3] << ": " << r.err;
+    EXPECT_NE(r.err.find("-L: has no effect with --"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << args[0];
+  }
+  // Still accepted: -L with --partitioning alone (every factor L), and --outer or --adaptive alone.
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"sim", kSphere, "-L", "3", "--partitioning", "fractional_odd"},
+        std::vector<std::string>{"sim", kSphere, "--outer", "2,2,2"},
+        std::vector<std::string>{"tessellate", kSphere, "--adaptive", "screen", "--camera", camera, "-o",
+                                 out.string()}}) {
+    const auto r = run_tessim(args, dir.path());
+    EXPECT_EQ(r.status, 0) << args[2] << ": " << r.err;
+  }
 }
 
 }  // namespace
