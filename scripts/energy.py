@@ -11,8 +11,9 @@ model (`tessim cosim`), which counts every register and port bit's toggles in ev
 the cycle model's statistics give the run's action counts (INT operations, CPG cycles, patches,
 vertices). Each record of the configuration (scripts/silicon.py) is mapped onto the library,
 the activity of its registers and ports (toggles per cycle, instance by instance) is propagated
-through its cells (scripts/gate_activity.py) and OpenSTA prices it: leakage, the clock's energy
-per cycle (flip-flops clocked, nothing else switching) and the data's energy per cycle.
+through its cells and priced from the library's tables (scripts/gate_activity.py): leakage, the
+clock's energy per cycle (flip-flops clocked, nothing else switching) and the data's energy per
+cycle. The probability of each source bit being 1 comes from a window of the run's waveform.
 
 The records are grouped into the blocks a user reads (BLOCKS), and each block's data energy is
 divided by its action count in the calibrating workload of each pattern class (uniform, Direct3D
@@ -42,6 +43,7 @@ import yosys_cost  # noqa: E402
 
 REPO = Path(__file__).resolve().parent.parent
 OUT = REPO / "docs" / "results" / "silicon" / "energy"
+GATE_CHECKS = REPO / "docs" / "results" / "silicon" / "gate_check"
 SCHEMA = 1
 WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
 CAMERA = "eye=2.6,1.3,-2.9,target=0,0.6,-0.2"
@@ -86,7 +88,6 @@ ACTIONS = {
     "vertices": "vertices out",
     "int_busy": "the INT block's operations (int.blocks[i].busy)",
 }
-PERIOD_NS = 10.0  # OpenSTA's clock for pricing; energies per cycle do not depend on it
 
 
 class EnergyError(Exception):
@@ -118,7 +119,109 @@ def workload_run(tessim, build, name, args, work):
     files = sorted(work.glob(f"{name}.dat.*"))
     if not files:
         raise EnergyError(f"{tessim} wrote no coverage for {name}: is its RTL build Verilated with coverage?")
-    return json.loads(stats_path.read_text()), read_toggles(files)
+    stats = json.loads(stats_path.read_text())
+    window = window_activity(tessim, build, name, args, work, stats["cycles"])
+    return stats, read_toggles(files), window
+
+
+WINDOW = 4000  # cycles of each workload's waveform, from the middle of the run
+
+
+def window_activity(tessim, build, name, args, work, cycles):
+    """{instance path below tess_unit, "/"-free as the waveform names it ("u_te.g_int[0].u_int"):
+    {signal bit: (probability of 1, changes per cycle)}} over WINDOW cycles from the middle of the
+    run, from its waveform (`tessim cosim --wave`), kept in WORK. The coverage counts give the
+    whole run's change rates but not how often a bit is 1; the propagation needs both (a bit that
+    is mostly 0 blocks an AND far more often than one at 1/2: on an INT block, probabilities of 1/2
+    overstate the data energy 3.4-fold)."""
+    out_path = Path(work) / f"{name}.window.json"
+    if out_path.exists() and out_path.stat().st_mtime > Path(tessim).stat().st_mtime:
+        return {k: {s: tuple(v) for s, v in d.items()} for k, d in json.loads(out_path.read_text()).items()}
+    start = max(0, cycles // 2 - WINDOW // 2)
+    vcd = Path(work) / f"{name}.vcd"
+    run([tessim, "cosim", *args, "--variant", build["name"], "--wave", str(vcd), "--wave-window",
+         f"{start}:{start + WINDOW - 1}"])
+    result = read_window(vcd)
+    vcd.unlink()
+    for gtkw in Path(work).glob(f"{name}.gtkw"):
+        gtkw.unlink()
+    out_path.write_text(json.dumps(result))
+    return result
+
+
+def read_window(vcd):
+    """The probabilities and change rates of every bit of every variable of a VCD, per scope,
+    cycles counted by the rising edges of tess_unit's clk_i."""
+    scope, vars_of, clock = [], {}, None
+    with open(vcd, encoding="latin-1") as f:
+        for line in f:
+            if line.startswith("$enddefinitions"):
+                break
+            parts = line.split()
+            if not parts:
+                continue
+            if parts[0] == "$scope":
+                scope.append(parts[2])
+            elif parts[0] == "$upscope":
+                scope.pop()
+            elif parts[0] == "$var" and parts[1] != "parameter":
+                width, code, vname = int(parts[2]), parts[3], parts[4]
+                if scope[:2] == ["tess", "tess_unit"]:
+                    if scope == ["tess", "tess_unit"] and vname == "clk_i":
+                        clock = code
+                    vars_of.setdefault(code, []).append((".".join(scope[2:]), vname, width))
+        if clock is None:
+            raise EnergyError(f"{vcd}: no tess_unit.clk_i")
+        value = {c: 0 for c in vars_of}
+        since = {c: 0 for c in vars_of}
+        ones = {c: collections.Counter() for c in vars_of}      # bit -> cycles at 1
+        changes = {c: collections.Counter() for c in vars_of}   # bit -> changes
+        cycle, clk = 0, 0
+
+        def settle(c, new):
+            old = value[c]
+            held = cycle - since[c]
+            if held and old:
+                v, b = old, 0
+                while v:
+                    if v & 1:
+                        ones[c][b] += held
+                    v >>= 1
+                    b += 1
+            diff, b = old ^ new, 0
+            while diff:
+                if diff & 1:
+                    changes[c][b] += 1
+                diff >>= 1
+                b += 1
+            value[c], since[c] = new, cycle
+
+        for line in f:
+            ch = line[0]
+            if ch == "b":
+                v, code = line[1:].split()
+                if code in value and code != clock:
+                    settle(code, int(v.replace("x", "0").replace("z", "0"), 2))
+            elif ch in "01xz":
+                code = line[1:].strip()
+                if code == clock:
+                    if ch == "1" and clk == 0:
+                        cycle += 1
+                    clk = 1 if ch == "1" else 0
+                elif code in value:
+                    settle(code, 1 if ch == "1" else 0)
+        for c in vars_of:
+            settle(c, value[c])
+    result = {}
+    for c, names in vars_of.items():
+        for where, vname, width in names:
+            table = result.setdefault(where, {})
+            for b in range(width):
+                entry = [round(ones[c][b] / cycle, 5), round(changes[c][b] / cycle, 5)]
+                table[f"{vname}[{b}]"] = entry
+                if width == 1:
+                    table[vname] = entry
+    return result
 
 
 def rtl_build(tessim, variant):
@@ -157,9 +260,10 @@ class Toggles:
     Yosys's mem2reg ("temp_q[55][3]" for "temp_q[13][3][3]" with 4 elements in the inner
     dimension), and registers local to a generate block are not counted by Verilator at all."""
 
-    def __init__(self, counts, cycles, paths):
+    def __init__(self, counts, cycles, paths, window=None):
         self.counts = counts
         self.cycles = cycles
+        self.window = window or {}
         self.paths = [p.replace("/", ".") for p in paths]
         self.patterns = [(k, re.compile(re.escape(k).replace(r"\[\*\]", r"\[\d+\]") + "$")) for k in counts]
         self.resolved = {}
@@ -191,6 +295,17 @@ class Toggles:
                     sizes = [max(a, b + 1) for a, b in zip(sizes + [0] * len(idx), idx)] if sizes else [i + 1 for i in idx]
             self.dims[(key, base)] = sizes
         return self.dims[(key, base)]
+
+    def in_window(self, instance, signal):
+        """(probability of 1, changes per cycle) of a bit in the waveform window, or None. The
+        window names instances with dots and every instance of a generate loop on its own."""
+        table = self.window.get(instance.replace("/", "."))
+        if table is None:
+            return None
+        for name in (signal, signal + "[0]"):
+            if name in table:
+                return table[name]
+        return None
 
     def density(self, instance, signal):
         key, merged = self.instance(instance)
@@ -270,15 +385,12 @@ def instance_paths(modules, top):
 class RecordPower:
     """One mapped record, priced with the activity of any of its instances."""
 
-    def __init__(self, lib, path, functions, tables, work):
+    def __init__(self, lib, path, functions, tables, power):
         text, self.boxes = gate_activity.rename_box_ports(Path(path).read_text())
-        self.path = Path(work) / "power.v"
-        Path(work).mkdir(parents=True, exist_ok=True)
-        self.path.write_text(text)
         self.netlist = gate_activity.Netlist(text, functions)
         self.tables = tables
+        self.power = power
         self.lib = lib
-        self.work = work
         self.unmatched = set()
 
     def source_signal(self, instance, net):
@@ -296,8 +408,10 @@ class RecordPower:
         return instance, base
 
     def activity(self, instance, toggles):
-        """(net activity, sources matched, sources not found) for one instance and one run's
-        Toggles (None: every source still, the clock alone). A register the run did not count
+        """(net activity, sources matched, sources not found, sources with a probability from the
+        waveform window) for one instance and one run's Toggles (None: every source still, the
+        clock alone). A source's probability of 1 is the window's, 1/2 where the waveform has no
+        such bit (the TE's temporaries: Verilator traces no array of more than 32 elements). A register the run did not count
         (local to a generate block) takes the density its D input propagates to, iterated to a
         fixed point from the counted registers' mean (a register's output changes in a cycle
         when its input did in the cycle before); an input not counted takes the counted mean."""
@@ -309,10 +423,16 @@ class RecordPower:
         unknown_flops = []
         if toggles is None:
             act = gate_activity.propagate(netlist, self.tables, lambda net: (0.5, 0.0))
-            return act, 0, 0
+            return act, 0, 0, 0
+        probs = {}
         for net in inputs + flops:
             inst, signal = self.source_signal(instance, net)
             d = toggles.density(inst, signal)
+            w = toggles.in_window(inst, signal)
+            if w is not None:
+                probs[net] = w[0]
+            if d is None and w is not None:
+                d = w[1]  # not counted by the coverage (local to a generate block): the window's rate
             if d is None:
                 missing += 1
                 self.unmatched.add(signal)
@@ -320,73 +440,27 @@ class RecordPower:
                     unknown_flops.append(net)
             else:
                 found += 1
-                densities[net] = min(d, 2.0)
+                densities[net] = min(d, 1.0)
         mean = sum(densities.values()) / len(densities) if densities else 0.0
         guess = {q: mean for q in unknown_flops}
         d_of = {q: d for q, d in netlist.flop_inputs.items()}
         act = None
         for _ in range(4 if unknown_flops else 1):
             act = gate_activity.propagate(netlist, self.tables,
-                                          lambda net: (0.5, densities.get(net, guess.get(net, mean))))
+                                          lambda net: (probs.get(net, 0.5), densities.get(net, guess.get(net, mean))))
             for q in unknown_flops:
                 d_net = d_of.get(q)
                 guess[q] = min(act.get(d_net, (0.5, mean))[1], 1.0) if d_net else mean
-        return act, found, missing
+        return act, found, missing, len(probs)
 
-    def price(self, act, instance):
-        """OpenSTA's power of the record with `act`, in a directory of the instance's own (two
-        instances of a record are priced at once)."""
-        work = Path(self.work) / re.sub(r"[^\w.-]", "_", instance or "top")
-        work.mkdir(parents=True, exist_ok=True)
-        return gate_activity.run_power(self.lib.path, self.path, act, self.netlist, work, PERIOD_NS)
+    def price(self, act):
+        """Energy per cycle (pJ: internal, switching, clock) of the record with `act`, from the
+        library's tables (scripts/gate_activity.py, price); each boundary net is counted once, at
+        the record whose input it is."""
+        return gate_activity.price(self.netlist, act, self.power, output_load_pf=0.0)
 
-
-def pj_per_cycle(power):
-    """Dynamic energy per clock cycle (pJ) of an OpenSTA power result."""
-    return (power["internal_w"] + power["switching_w"]) * power["period_ns"] * 1e3
-
-
-LONE_FLOP = """\
-module lone(clk_i, d_i, q_o);
-  input clk_i;
-  input d_i;
-  output q_o;
-  DFFPOSX1 r (.CLK(clk_i), .D(d_i), .Q(q_o));
-endmodule
-"""
-
-
-def clock_correction(lib, work):
-    """Liberty's energy of a clock pin per cycle over OpenSTA's, for a lone DFFPOSX1.
-
-    Per cycle a flip-flop's clock pin rises once and falls once: the Liberty tables' rise_power
-    plus fall_power (at the ideal clock's zero slew, extrapolated from the tables' first two
-    points, as OpenSTA looks tables up). OpenSTA 2.0.17 reports twice that for a clock pin while
-    it prices a data pin at the tables' mean per transition (checked on the D pin); the flow
-    scales every clock-only figure by this ratio."""
-    work = Path(work)
-    work.mkdir(parents=True, exist_ok=True)
-    (work / "lone.v").write_text(LONE_FLOP)
-    still = {"internal_w": 0.0}
-    script = work / "lone.tcl"
-    script.write_text(f"read_liberty {lib.path}\nread_verilog {work / 'lone.v'}\nlink_design lone\n"
-                      f"create_clock -name clk -period {PERIOD_NS} [get_ports clk_i]\n"
-                      "sta::set_power_input_activity 0 0.5\nreport_power -digits 6\nexit\n")
-    proc = subprocess.run(["sta", "-no_init", "-no_splash", "-exit", str(script)], capture_output=True, text=True)
-    m = re.search(r"^Total\s+([\d.eE+-]+)\s+([\d.eE+-]+)", proc.stdout, re.M)
-    if proc.returncode != 0 or not m:
-        raise EnergyError(f"OpenSTA failed on a lone flip-flop:\n{proc.stdout[-800:]}")
-    still["internal_w"] = float(m.group(1)) + float(m.group(2))
-    cell = re.search(r"cell \(DFFPOSX1\)(.*?)(?=^\s*cell\s*\()", lib.text, re.S | re.M).group(1)
-    clk = re.search(r"pin\(CLK\)(.*?)pin\(D\)", cell, re.S).group(1)
-    energy = 0.0
-    for edge in ("rise_power", "fall_power"):
-        table = re.search(edge + r"\(\w+\)\s*\{\s*index_1\s*\(\"([^\"]*)\"\);\s*values\s*\(\"([^\"]*)\"\)", clk, re.S)
-        x = [float(v) for v in table.group(1).split(",")]
-        y = [float(v) for v in table.group(2).split(",")]
-        energy += y[0] - x[0] * (y[1] - y[0]) / (x[1] - x[0])  # at slew 0
-    measured = still["internal_w"] * PERIOD_NS * 1e3  # pJ per cycle
-    return {"liberty_pj": round(energy, 6), "opensta_pj": round(measured, 6), "factor": round(energy / measured, 6)}
+    def leakage_nw(self):
+        return sum(self.lib.cells[ctype]["leakage_nw"] for ctype, _, _ in self.netlist.cells)
 
 
 ICG = """\
@@ -395,34 +469,27 @@ module icg(clk_i, en_i, gclk_o);
   input en_i;
   output gclk_o;
   wire en_l;
+  wire nclk;
   LATCH l (.CLK(nclk), .D(en_i), .Q(en_l));
   INVX1 i (.A(clk_i), .Y(nclk));
   AND2X2 a (.A(clk_i), .B(en_l), .Y(gclk_o));
-  wire nclk;
 endmodule
 """
 FLOPS_PER_GATE = 32  # flip-flops behind one clock gate (a leaf of the clock tree)
 
 
-def clock_gate(lib, work, factor):
+def clock_gate(lib, functions, power):
     """A latch-based clock gate from the library's cells (a LATCH open while the clock is low, an
-    AND2X2, an inverter): its area, leakage and energy per cycle with the enable still; a gated
-    flip-flop's clock pin costs nothing while the gate is shut."""
-    work = Path(work)
-    work.mkdir(parents=True, exist_ok=True)
-    (work / "icg.v").write_text(ICG)
-    script = work / "icg.tcl"
-    script.write_text(f"read_liberty {lib.path}\nread_verilog {work / 'icg.v'}\nlink_design icg\n"
-                      f"create_clock -name clk -period {PERIOD_NS} [get_ports clk_i]\n"
-                      "sta::set_power_input_activity 0 0.5\nreport_power -digits 6\nexit\n")
-    proc = subprocess.run(["sta", "-no_init", "-no_splash", "-exit", str(script)], capture_output=True, text=True)
-    m = re.search(r"^Total\s+([\d.eE+-]+)\s+([\d.eE+-]+)\s+([\d.eE+-]+)", proc.stdout, re.M)
-    if proc.returncode != 0 or not m:
-        raise EnergyError(f"OpenSTA failed on the clock gate:\n{proc.stdout[-800:]}{proc.stderr[-800:]}")
+    AND2X2, an inverter): its area, leakage and energy per cycle with its enable still (the latch's
+    clock pin and the inverter on the clock, two transitions a cycle); a gated flip-flop's clock
+    pin costs nothing while the gate is shut."""
+    netlist = gate_activity.Netlist(ICG, functions)
+    act = {netlist.find("clk_i"): (0.5, 2.0), netlist.find("nclk"): (0.5, 2.0)}
+    e = gate_activity.price(netlist, act, power, output_load_pf=0.0)
     cells = {"LATCH": 1, "AND2X2": 1, "INVX1": 1}
     return {"cells": cells, "area_um2": sum(lib.cells[c]["area"] * n for c, n in cells.items()),
-            "leakage_nw": sum(lib.cells[c]["leakage_nw"] * n for c, n in cells.items()),
-            "pj_per_cycle": round((float(m.group(1)) + float(m.group(2))) * PERIOD_NS * 1e3 * factor, 6),
+            "leakage_nw": round(sum(lib.cells[c]["leakage_nw"] * n for c, n in cells.items()), 4),
+            "pj_per_cycle": round(e["internal"] + e["switching"] + e["clock"], 6),
             "flops_per_gate": FLOPS_PER_GATE}
 
 
@@ -460,11 +527,11 @@ def characterize(tessim, variant, name, jobs, work_root):
         runs[wname] = workload_run(tessim, build, wname, args, Path(work_root) / "runs" / variant)
     functions = gate_activity.liberty_functions(lib.text)
     tables = gate_activity.cell_tables(functions)
+    power = gate_activity.liberty_power(lib.text)
     records = {}
     for rname, (base, n, key, path, _) in mapped.items():
-        records[rname] = RecordPower(lib, path, functions, tables, Path(work_root) / "power" / key[:24])
+        records[rname] = RecordPower(lib, path, functions, tables, power)
 
-    correction = clock_correction(lib, Path(work_root) / "lone")
     all_instances = instance_paths(modules, top)
     paths = [p for p, _ in all_instances]
 
@@ -472,17 +539,18 @@ def characterize(tessim, variant, name, jobs, work_root):
         path, rname = item
         rec = records[rname]
         out = {"path": path or "tess_unit", "record": rname, "base": modules[rname].base}
-        act, _, _ = rec.activity(path, None)
-        still = rec.price(act, path)
-        out["clock_pj"] = pj_per_cycle(still) * correction["factor"]
-        out["leakage_nw"] = still["leakage_w"] * 1e9
+        act, _, _, _ = rec.activity(path, None)
+        still = rec.price(act)
+        out["clock_pj"] = still["clock"]
+        out["leakage_nw"] = rec.leakage_nw()
         out["flops"] = len(rec.netlist.flops)
         out["workloads"] = {}
-        for wname, (stats, toggles) in runs.items():
-            act, found, missing = rec.activity(path, Toggles(toggles, stats["cycles"], paths))
-            p = rec.price(act, path)
+        for wname, (stats, toggles, window) in runs.items():
+            act, found, missing, windowed = rec.activity(path, Toggles(toggles, stats["cycles"], paths, window))
+            p = rec.price(act)
             flops = [q for _, q in rec.netlist.flops]
-            out["workloads"][wname] = {"data_pj_per_cycle": pj_per_cycle(p) - pj_per_cycle(still),
+            out["workloads"][wname] = {"data_pj_per_cycle": p["internal"] + p["switching"],
+                                       "sources_in_window": windowed,
                                        "flop_activity": (sum(act[q][1] for q in flops) / len(flops)) if flops else 0.0,
                                        "sources_found": found, "sources_missing": missing}
         print(f"  priced {out['path']}: clock {out['clock_pj']:.2f} pJ/cycle, data "
@@ -493,6 +561,20 @@ def characterize(tessim, variant, name, jobs, work_root):
 
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         instances = list(pool.map(price_instance, all_instances))
+    # Where a gate-level simulation of a record exists (scripts/gate_check.py on this RTL), the
+    # propagation's data energy of that record is scaled to it: independence is far off on some
+    # datapaths (the CPG's edge lane), close on others (an INT block).
+    scales = {}
+    for check in sorted(GATE_CHECKS.glob("*.json")):
+        g = json.loads(check.read_text())
+        if g.get("sources_digest") == cost_records.sources_digest(REPO / "rtl") and g["data_pj_per_cycle"]["propagated"]:
+            scales[g["record"]] = g["data_pj_per_cycle"]["gate_level"] / g["data_pj_per_cycle"]["propagated"]
+    for inst in instances:
+        factor = scales.get(inst["record"])
+        if factor is not None:
+            inst["gate_level_scale"] = round(factor, 4)
+            for v in inst["workloads"].values():
+                v["data_pj_per_cycle"] *= factor
     # per block
     area = {r["derived"]: r["area_um2"] for r in silicon_cost["records"]}
     blocks = {}
@@ -558,10 +640,11 @@ def characterize(tessim, variant, name, jobs, work_root):
         "clock_mhz": silicon_cost["clock_mhz"],
         "int_blocks": sum(1 for b in block_list if b["name"].startswith("int")),
         "actions": ACTIONS,
-        "clock_correction": correction,
-        "clock_gate": clock_gate(lib, Path(work_root) / "icg", correction["factor"]),
+        "pricing": {"reference_slew_ns": gate_activity.REFERENCE_SLEW_NS, "vdd": gate_activity.VDD},
+        "clock_gate": clock_gate(lib, functions, power),
         "workloads": {w: {"args": [a.replace("/usr/share/assimp/models/", "") for a in args], "class": cls,
                           "role": role, "counts": acts[w]} for w, (args, cls, role) in WORKLOADS.items()},
+        "gate_level_scales": {modules[r].base: round(f, 4) for r, f in scales.items() if r in modules},
         "blocks": block_list, "validation": validation,
         "seconds": round(time.monotonic() - start),
     }
@@ -573,7 +656,7 @@ def main(argv):
     ap.add_argument("--variant", default="n2", help="its RTL build (default n2)")
     ap.add_argument("--name", help="the result's name (default: the build's)")
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--work", default=str(REPO / "build-energy"), help="mapped netlists and OpenSTA runs")
+    ap.add_argument("--work", default=str(REPO / "build-energy"), help="mapped netlists and the workloads' runs")
     args = ap.parse_args(argv)
     try:
         result = characterize(args.tessim, args.variant, args.name or args.variant, args.jobs, args.work)

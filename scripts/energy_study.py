@@ -120,6 +120,17 @@ def table(data):
             seen.add(key)
             lines.append(f"| {r['configuration']} | {v['workload']} | {v['role']} | {v['direct_pj'] / 1e6:.1f} | "
                          f"{v['predicted_pj'] / 1e6:.1f} | {100 * v['error']:+.1f} % |")
+    checks = sorted((REPO / "docs" / "results" / "silicon" / "gate_check").glob("*.json"))
+    if checks:
+        lines += ["", "Gate-level simulation against the propagation on one record instance each "
+                  "(`scripts/gate_check.py`, Wuson at L = 8, the same 10 000-cycle window; data energy per cycle):", "",
+                  "| instance | cells | gate level pJ | propagated pJ | difference | with every probability 1/2 |",
+                  "|---|---|---|---|---|---|"]
+        for path in checks:
+            g = json.loads(path.read_text())
+            e = g["data_pj_per_cycle"]
+            lines.append(f"| `{g['instance']}` | {g['cells']} | {e['gate_level']:.1f} | {e['propagated']:.1f} | "
+                         f"{100 * g['difference']['propagated']:+.1f} % | {100 * g['difference']['propagated_p_half']:+.0f} % |")
     return "\n".join(lines) + "\n"
 
 

@@ -14,15 +14,19 @@ in a cycle when its value before and after differ,
     P(y changes) = sum over pairs (a, b) with f(a) != f(b) of prod P(x_i: a_i -> b_i)
 
 Densities stay at most one a cycle; glitches are not counted and reconvergent fan-out is taken as
-independent. OpenSTA 2.0.17 (Debian's) does not propagate activity through combinational cells,
-so the activities are computed here and annotated on every cell pin; OpenSTA then prices them with
-the Liberty internal energy tables, the pin and wire-load capacitances, and the clock.
+independent (scripts/gate_check.py measures what that costs against a gate-level simulation).
+
+The activities are then priced from the Liberty tables (`price`): each cell output's internal
+energy per transition (the mean of its rise and fall tables over its arcs, at its net's load and a
+reference input slew), each net's 1/2 C V^2 per change (pin capacitances plus the wire-load
+model), input pins' passive energy, and each flip-flop's clock pin once up and once down a cycle.
+Debian's OpenSTA 2.0.17 cannot do this: it ignores activities annotated on combinational outputs,
+propagating its own from the input ports only (none from registers), and charges a transition the
+sum of the rise and fall tables rather than one of them.
 """
 
 import itertools
 import re
-import subprocess
-from pathlib import Path
 
 CONST = {"1'h0": 0.0, "1'h1": 1.0, "1'b0": 0.0, "1'b1": 1.0, "1'hx": 0.0, "1'bx": 0.0, "1'bz": 0.0}
 
@@ -339,56 +343,144 @@ def propagate(netlist, tables, source):
     return act
 
 
-def power_script(lib_path, netlist_path, act, netlist, period_ns, top="rec"):
-    """An OpenSTA script that annotates `act` on every cell pin and input port and reports power."""
-    lines = [f"read_liberty {lib_path}", f"read_verilog {netlist_path}", f"link_design {top}"]
-    if "clk_i" in netlist.ports:
-        lines.append(f"create_clock -name clk -period {period_ns} [get_ports clk_i]")
-    else:
-        lines.append(f"create_clock -name clk -period {period_ns}")
-    # Inputs in the clock's domain: OpenSTA prices a pin's activity per cycle of its clock, and
-    # gives nothing to logic no clock reaches (a record without flip-flops).
-    lines.append("set_input_delay 0 -clock clk [all_inputs]")
-    lines.append("sta::set_power_input_activity 0 0.5")
-    lines.append("proc a {p d y} { sta::set_power_pin_activity [get_pins $p] $d $y }")
-    lines.append("proc i {p d y} { sta::set_power_input_port_activity [get_ports $p] $d $y }")
-    for net in netlist.input_bits:
-        if net == "clk_i":
-            continue
-        p, d = act.get(netlist.find(net), (0.5, 0.0))
-        lines.append(f"i {{{net}}} {d:.6g} {p:.6g}")  # a port bit: its index is not escaped
+# ---- Pricing from the Liberty tables (OpenSTA 2.0.17 ignores activities annotated on
+# combinational outputs: it propagates its own from the input ports and none from registers) ----
+
+VDD = 1.8
+REFERENCE_SLEW_NS = 0.12  # the input transition every table is read at (no timing-driven slews)
+
+
+def groups(text, name):
+    """[(argument, body)] of every `name(argument) { body }` group in `text`, braces balanced."""
+    out = []
+    for m in re.finditer(r"\b" + name + r"\s*\(([^)]*)\)\s*\{", text):
+        depth, i = 1, m.end()
+        while depth and i < len(text):
+            if text[i] == "{":
+                depth += 1
+            elif text[i] == "}":
+                depth -= 1
+            i += 1
+        out.append((m.group(1).strip().strip('"'), text[m.end():i - 1]))
+    return out
+
+
+def table(body):
+    """(index_1, index_2 or None, values as rows) of a Liberty table group body."""
+    def numbers(key):
+        m = re.search(key + r'\s*\(\s*"([^"]*)"\s*\)', body)
+        return [float(x) for x in m.group(1).split(",")] if m else None
+    values = re.search(r"values\s*\((.*?)\)\s*;", body, re.S).group(1)
+    rows = [[float(x) for x in r.split(",")] for r in re.findall(r'"([^"]*)"', values)]
+    return numbers("index_1"), numbers("index_2"), rows
+
+
+def lookup(tab, x, y=None):
+    """Linear interpolation (and extrapolation) in a table: x on index_1, y on index_2."""
+    i1, i2, rows = tab
+
+    def locate(index, v):
+        if len(index) == 1:
+            return 0, 0, 0.0
+        k = 0
+        while k < len(index) - 2 and v > index[k + 1]:
+            k += 1
+        return k, k + 1, (v - index[k]) / (index[k + 1] - index[k])
+
+    if i2 is None or len(rows) == 1:
+        row = rows[0] if len(rows) == 1 else [r[0] for r in rows]
+        a, b, t = locate(i1, x)
+        return row[a] + t * (row[b] - row[a])
+    a, b, t = locate(i1, x)
+    c, d, u = locate(i2, y)
+    top = rows[a][c] + u * (rows[a][d] - rows[a][c])
+    bottom = rows[b][c] + u * (rows[b][d] - rows[b][c])
+    return top + t * (bottom - top)
+
+
+def liberty_power(text):
+    """Cell -> {"caps": {input pin: pF}, "passive": {input pin: (rise table, fall table)},
+    "arcs": {output pin: [(related pin, rise table, fall table)]}, "clock": pin or None}."""
+    cells = {}
+    for name, body in groups(text, "cell"):
+        caps, passive, arcs, clock = {}, {}, {}, None
+        for pin, pbody in groups(body, "pin"):
+            direction = re.search(r"direction\s*:\s*(\w+)", pbody).group(1)
+            if direction == "input":
+                cap = re.search(r"^\s*capacitance\s*:\s*([\d.eE+-]+)", pbody, re.M)
+                caps[pin] = float(cap.group(1)) if cap else 0.0
+                if re.search(r"^\s*clock\s*:\s*true", pbody, re.M):
+                    clock = pin
+            for _, ip in groups(pbody, "internal_power"):
+                related = re.search(r'related_pin\s*:\s*"([^"]*)"', ip)
+                rise = [table(b) for _, b in groups(ip, "rise_power")]
+                fall = [table(b) for _, b in groups(ip, "fall_power")]
+                if not rise or not fall:
+                    continue
+                if direction == "input" and not related:
+                    passive[pin] = (rise[0], fall[0])
+                elif direction == "output":
+                    arcs.setdefault(pin, []).append((related.group(1) if related else None, rise[0], fall[0]))
+        cells[name] = {"caps": caps, "passive": passive, "arcs": arcs, "clock": clock}
+    return cells
+
+
+def wire_load_pf(fanout, per_um_pf=0.0002, um_per_fanout=25.0):
+    """The wire-load model scripts/silicon.py adds to the library: 25 um of wire per fan-out."""
+    return per_um_pf * um_per_fanout * fanout
+
+
+def price(netlist, act, power, output_load_pf=0.02):
+    """Energy per cycle (pJ) of a mapped netlist with activity `act` (net -> (probability,
+    changes per cycle)): {"internal": cells' internal energy, "switching": nets' 1/2 C V^2,
+    "clock": flip-flops' clock pins, two transitions a cycle}. Loads are the pins' capacitances,
+    the wire-load estimate and the record's output load; tables are read at REFERENCE_SLEW_NS."""
+    loads, fanout = {}, {}
     for ctype, inst, pins in netlist.cells:
+        caps = power[ctype]["caps"]
         for pin, net in pins.items():
-            if pin == "CLK":
+            if pin in caps:
+                n = netlist.find(net)
+                loads[n] = loads.get(n, 0.0) + caps[pin]
+                fanout[n] = fanout.get(n, 0) + 1
+    for name, (direction, rng) in netlist.ports.items():
+        if direction != "output":
+            continue
+        bits = [name] if rng is None else [f"{name}[{i}]" for i in range(min(rng), max(rng) + 1)]
+        for b in bits:
+            n = netlist.find(b)
+            loads[n] = loads.get(n, 0.0) + output_load_pf
+            fanout[n] = fanout.get(n, 0) + 1
+
+    def cap(n):
+        return loads.get(n, 0.0) + wire_load_pf(fanout.get(n, 0))
+
+    internal = switching = clock = 0.0
+    driven = set()
+    for ctype, inst, pins in netlist.cells:
+        cell = power[ctype]
+        for pin, (rise, fall) in cell["passive"].items():
+            net = pins.get(pin)
+            if net is None:
                 continue
-            p, d = act.get(netlist.find(net), (0.5, 0.0))
-            lines.append(f"a {tcl_brace(inst)[:-1]}/{pin}}} {d:.6g} {p:.6g}")
-    lines.append("report_power -digits 6")
-    lines.append("exit")
-    return "\n".join(lines) + "\n"
-
-
-def tcl_brace(name):
-    return "{" + name.replace("[", "\\[").replace("]", "\\]") + "}"
-
-
-def run_power(lib_path, netlist_path, act, netlist, work, period_ns=10.0, top="rec"):
-    """{"internal_w", "switching_w", "leakage_w", "sequential_w", "combinational_w"} of OpenSTA's
-    report_power with `act` annotated."""
-    script = Path(work) / "power.tcl"
-    script.write_text(power_script(lib_path, netlist_path, act, netlist, period_ns, top))
-    proc = subprocess.run(["sta", "-no_init", "-no_splash", "-exit", str(script)], capture_output=True, text=True,
-                          cwd=work)
-    if proc.returncode != 0 or "Error" in proc.stdout:
-        tail = "\n".join((proc.stdout + proc.stderr).splitlines()[-10:])
-        raise NetlistError(f"OpenSTA power failed:\n{tail}")
-    rows = {}
-    for m in re.finditer(r"^(Sequential|Combinational|Total)\s+([\d.eE+-]+)\s+([\d.eE+-]+)\s+([\d.eE+-]+)\s+([\d.eE+-]+)",
-                         proc.stdout, re.M):
-        rows[m.group(1)] = [float(m.group(i)) for i in range(2, 6)]
-    if "Total" not in rows:
-        raise NetlistError("OpenSTA printed no power report")
-    internal, switching, leakage, total = rows["Total"]
-    return {"internal_w": internal, "switching_w": switching, "leakage_w": leakage,
-            "sequential_w": rows.get("Sequential", [0, 0, 0, 0])[3],
-            "combinational_w": rows.get("Combinational", [0, 0, 0, 0])[3], "period_ns": period_ns}
+            if pin == cell["clock"]:
+                clock += lookup(rise, 0.0) + lookup(fall, 0.0)  # the ideal clock: one rise and one fall
+            else:
+                internal += act.get(netlist.find(net), (0.5, 0.0))[1] * (lookup(rise, REFERENCE_SLEW_NS)
+                                                                        + lookup(fall, REFERENCE_SLEW_NS)) / 2
+        for out, arcs in cell["arcs"].items():
+            net = pins.get(out)
+            if net is None:
+                continue
+            n = netlist.find(net)
+            d = act.get(n, (0.5, 0.0))[1]
+            c = cap(n)
+            e = sum(lookup(r, c, REFERENCE_SLEW_NS) + lookup(f, c, REFERENCE_SLEW_NS) for _, r, f in arcs) / (2 * len(arcs))
+            internal += d * e
+            switching += d * 0.5 * c * VDD * VDD
+            driven.add(n)
+    for b in netlist.input_bits:  # nets driven by the record's inputs
+        n = netlist.find(b)
+        if b != "clk_i" and n not in driven:
+            switching += act.get(n, (0.5, 0.0))[1] * 0.5 * cap(n) * VDD * VDD
+    return {"internal": internal, "switching": switching, "clock": clock}

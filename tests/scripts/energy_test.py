@@ -6,13 +6,15 @@
    probability 1/2 changes with the closed form; on a small netlist without reconvergent fan-out
    the propagated densities equal a zero-delay simulation's toggle counts.
 2. The activity path counts toggles: a netlist whose sources never toggle costs its clock alone
-   (data energy exactly 0), and its data energy grows with the sources' densities.
+   (data energy exactly 0), and its data energy grows with the sources' densities; a net's
+   switching energy is 1/2 C V^2 per change with its pins' and the wire-load model's capacitance.
 3. The figures follow the library: a Liberty copy with the flip-flop's clock-pin energy doubled
    doubles the clock energy.
 4. The committed characterization is the current one: its RTL sources digest and library are
    today's, its clock and area are the silicon flow's for the same configuration, its blocks'
-   areas add up to the unit's, and one INT block's area lies within 80-150 % of a plain mapping
-   of tess_int (synth, dfflibmap, abc -liberty, no delay target).
+   areas add up to the unit's, one INT block's area lies within 80-150 % of a plain mapping of
+   tess_int (synth, dfflibmap, abc -liberty, no delay target), and the records that have a
+   gate-level check (scripts/gate_check.py, of today's RTL) are scaled to it.
 """
 
 import json
@@ -50,6 +52,23 @@ module rec(clk_i, a_i, b_i, c_i, d_i, e_i, y_o);
   INVX1 g3 (.A(q), .Y(n3));
   DFFPOSX1 r (.CLK(clk_i), .D(n2), .Q(q));
   AOI21X1 g4 (.A(n3), .B(d_i), .C(e_i), .Y(y_o));
+endmodule
+"""
+
+
+FANOUT = """\
+module rec(a_i, y0_o, y1_o, y2_o, y3_o);
+  input a_i;
+  output y0_o;
+  output y1_o;
+  output y2_o;
+  output y3_o;
+  wire n;
+  INVX1 d (.A(a_i), .Y(n));
+  INVX1 l0 (.A(n), .Y(y0_o));
+  INVX1 l1 (.A(n), .Y(y1_o));
+  INVX1 l2 (.A(n), .Y(y2_o));
+  INVX1 l3 (.A(n), .Y(y3_o));
 endmodule
 """
 
@@ -117,20 +136,27 @@ def main():
     check("propagated densities match a zero-delay simulation", worst < 0.01,
           ", ".join(f"{n} {act[n][1]:.4f}/{sim.get(n, 0):.4f}" for n in ("n1", "n2", "n3", "y_o")))
 
+    power = gate_activity.liberty_power(lib.text)
     with tempfile.TemporaryDirectory(prefix="energy-test-") as tmp:
         tmp = Path(tmp)
-        (tmp / "rec.v").write_text(NETLIST)
-        still = gate_activity.run_power(lib.path, tmp / "rec.v", gate_activity.propagate(net, tables, lambda n: (0.5, 0.0)),
-                                        net, tmp)
-        busy = gate_activity.run_power(lib.path, tmp / "rec.v", act, net, tmp)
-        double = gate_activity.run_power(lib.path, tmp / "rec.v",
-                                         gate_activity.propagate(net, tables, lambda n: (0.5, 2 * sources[n])), net, tmp)
-        clock = still["internal_w"] + still["switching_w"]
-        data1 = busy["internal_w"] + busy["switching_w"] - clock
-        data2 = double["internal_w"] + double["switching_w"] - clock
-        check("still sources: the clock alone (no switching)", still["switching_w"] == 0.0 and clock > 0, str(still))
+        still = gate_activity.price(net, gate_activity.propagate(net, tables, lambda n: (0.5, 0.0)), power)
+        busy = gate_activity.price(net, act, power)
+        double = gate_activity.price(net, gate_activity.propagate(net, tables, lambda n: (0.5, min(1.0, 2 * sources[n]))),
+                                     power)
+        data1 = busy["internal"] + busy["switching"]
+        data2 = double["internal"] + double["switching"]
+        check("still sources: the clock alone", still["internal"] == 0.0 and still["switching"] == 0.0
+              and still["clock"] > 0, str(still))
+        check("the clock is the flip-flop's clock pin up and down, whatever the data", busy["clock"] == still["clock"])
         check("toggling sources add data energy", data1 > 0, f"{data1}")
         check("more toggling costs more data energy", data2 > data1 * 1.2, f"{data1} -> {data2}")
+        # A net's switching energy is 1/2 C V^2 per change: an inverter driving four inverters,
+        # C = four input pins and the wire-load model's 100 um for fan-out 4.
+        fan = gate_activity.Netlist(FANOUT, functions)
+        e = gate_activity.price(fan, {fan.find("a_i"): (0.5, 0.0), fan.find("n"): (0.5, 0.5)}, power)
+        c = 4 * power["INVX1"]["caps"]["A"] + 0.0002 * 100
+        check("a net's switching energy is 1/2 C V^2 per change", abs(e["switching"] - 0.5 * 0.5 * c * 1.8 ** 2) < 1e-9,
+              f"{e['switching']} against {0.5 * 0.5 * c * 1.8 ** 2}")
 
         text = silicon.LIBERTY.read_text()
         m = re.search(r"(cell \(DFFPOSX1\).*?pin\(CLK\).*?internal_power\(\) \{)(.*?)(\n    \}\n)", text, re.S)
@@ -140,11 +166,10 @@ def main():
         (tmp / "clk2.lib").write_text(text[:m.start(2)] + scaled + text[m.end(2):])
         (tmp / "lib2").mkdir()
         lib2 = silicon.Library(tmp / "clk2.lib", tmp / "lib2")
-        still2 = gate_activity.run_power(lib2.path, tmp / "rec.v",
-                                         gate_activity.propagate(net, tables, lambda n: (0.5, 0.0)), net, tmp)
-        clock2 = still2["internal_w"] + still2["switching_w"]
+        still2 = gate_activity.price(net, gate_activity.propagate(net, tables, lambda n: (0.5, 0.0)),
+                                     gate_activity.liberty_power(lib2.text))
         check("a library with the flip-flop's clock-pin energy doubled doubles the clock energy",
-              abs(clock2 - 2 * clock) < 0.01 * clock, f"{clock} -> {clock2}")
+              abs(still2["clock"] - 2 * still["clock"]) < 1e-9, f"{still['clock']} -> {still2['clock']}")
         check("...and changes the library's digest (another key)", lib2.digest != lib.digest)
 
         files = sorted((ROOT / "docs" / "results" / "silicon" / "energy").glob("*.json"))
@@ -170,6 +195,15 @@ def main():
                       f"({100 * ratio:.1f} %)")
                 check(f"{name}: an INT block's area is 80-150 % of a plain mapping of tess_int", 0.8 <= ratio <= 1.5,
                       f"{ratio:.3f}")
+            checks = [json.loads(g.read_text()) for g in sorted((ROOT / "docs" / "results" / "silicon" / "gate_check").glob("*.json"))]
+            for g in checks:
+                check(f"gate check of {g['instance']}: of today's RTL", g["sources_digest"] == c["sources_digest"])
+            scales = {re.sub(r"^.*\\", "", g["record"]): g["data_pj_per_cycle"]["gate_level"] / g["data_pj_per_cycle"]["propagated"]
+                      for g in checks}
+            check(f"{name}: the records with a gate-level check are scaled to it",
+                  set(c.get("gate_level_scales", {})) == set(scales)
+                  and all(abs(c["gate_level_scales"][k] - v) < 1e-3 for k, v in scales.items()),
+                  f"{c.get('gate_level_scales')} against {scales}")
             for v in c["validation"]:
                 check(f"{name}: {v['workload']} {v['block']} has a direct and a predicted energy",
                       v["direct_pj"] >= 0 and v["predicted_pj"] >= 0)
