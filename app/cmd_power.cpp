@@ -31,6 +31,7 @@ struct PowerArgs {
   std::string energy;  // a characterization file instead of the embedded ones
   bool clock_gating = false;
   double clock_mhz = 0;
+  const CLI::Option* clock_option = nullptr;  // --clock-mhz: given, 0 or negative is an error
   bool quiet = false;
   UnitPatternOptions pattern;
 };
@@ -56,7 +57,8 @@ void run_power(const PowerArgs& a, const ConfigFlags& flags) {
   if (cfg.evaluation != sim::Evaluation::Unit || cfg.cpg_mapping != sim::CpgMapping::Dedicated)
     throw InputError("command line", cfg.evaluation != sim::Evaluation::Unit ? "--evaluation" : "--cpg-mapping",
                      "power prices the unit's own CPG and TE (evaluation unit, cpg_mapping dedicated)");
-  if (a.clock_mhz < 0) throw InputError("command line", "--clock-mhz", "must be positive");
+  if (a.clock_option && a.clock_option->count() > 0 && !(a.clock_mhz > 0))
+    throw InputError("command line", "--clock-mhz", "must be a positive number of MHz");
   std::vector<sim::EnergyCharacterization> loaded;
   if (!a.energy.empty()) {
     std::ifstream in(a.energy);
@@ -122,8 +124,9 @@ void register_power(CLI::App& app) {
   sub->add_flag("--clock-gating", args->clock_gating,
                 "gate the clock of idle INT blocks and of the CPG while it does not compute (latch-based gates "
                 "of the library's cells, one per 32 flip-flops), and of the whole unit when idle");
-  sub->add_option("--clock-mhz", args->clock_mhz, "run at this clock instead of the configuration's own (MHz)")
-      ->transform(number_check<double>("command line", "--clock-mhz", "a positive number"));
+  auto* clock = sub->add_option("--clock-mhz", args->clock_mhz, "run at this clock instead of the configuration's own (MHz)")
+                    ->transform(number_check<double>("command line", "--clock-mhz", "a positive number"));
+  args->clock_option = clock;
   add_unit_pattern_options(*sub, args->pattern, "power");
   add_displace_options(*sub, args->pattern.displace, true);
   sub->add_flag("--quiet", args->quiet, "print nothing (the JSON only)");

@@ -100,5 +100,23 @@ TEST(PowerCli, UncharacterizedConfigurationIsRefusedByName) {
   EXPECT_NE(units.err.find("--units"), std::string::npos) << units.err;
 }
 
+// At another clock the same run takes another time: power scales with the clock, the dynamic
+// energy per vertex does not; a clock of zero or less is refused.
+TEST(PowerCli, ClockOptionScalesPowerNotDynamicEnergy) {
+  testing::TempDir dir;
+  const nlohmann::json own = power(dir, {"-L", "4"}, "own");
+  const nlohmann::json slow = power(dir, {"-L", "4", "--clock-mhz", "10"}, "slow");
+  EXPECT_DOUBLE_EQ(slow["clock_mhz"].get<double>(), 10.0);
+  const double ratio = own["clock_mhz"].get<double>() / 10.0;
+  EXPECT_NEAR((own["clock_mw"].get<double>() + own["data_mw"].get<double>()) / ratio,
+              slow["clock_mw"].get<double>() + slow["data_mw"].get<double>(), 1e-9 * own["power_mw"].get<double>());
+  EXPECT_NEAR(own["leakage_mw"].get<double>(), slow["leakage_mw"].get<double>(), 1e-12);
+  for (const char* bad : {"0", "-5"}) {
+    const auto r = testing::run_tessim({"power", kWuson, "--clock-mhz", bad}, dir.path());
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("--clock-mhz"), std::string::npos) << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace tessim
