@@ -313,6 +313,7 @@ void run_render(const RenderArgs& args) {
 
   const Mesh mesh = load_mesh(args.mesh);
   bind_silhouette(settings, mesh);
+  warn_nyquist_shortfall(settings, mesh);
   const std::string mesh_name = mesh.source.empty() ? args.mesh : mesh.source;
   const bool tagged = mesh.has_tags();
   if (compare.pn && !tagged)

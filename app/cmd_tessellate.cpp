@@ -47,6 +47,7 @@ void run_tessellate(const TessellateArgs& args) {
 
   const Mesh mesh = load_mesh(args.mesh);
   bind_silhouette(settings, mesh);
+  warn_nyquist_shortfall(settings, mesh);
   PatternCache patterns(settings);
   const TessellationCounts counts = count_tessellation(mesh, patterns);
   TessellationSummary summary;

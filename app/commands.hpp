@@ -208,6 +208,9 @@ void warn_tags_ignored(const Mesh& mesh, const char* command);
 // With --cpg-tags 1: a warning with the count of vertices whose tags vanish in the fixed-point
 // input (sim::tags_lost_in_fixed_point).
 void warn_tags_lost(const Mesh& mesh, const sim::NumberFormat& format);
+// With a Nyquist rule: a warning with the count of edges whose displacement asks for more than
+// the 64 segments a factor gives (model/factors.hpp, nyquist_shortfall).
+void warn_nyquist_shortfall(const TessSettings& s, const Mesh& mesh);
 
 void register_info(CLI::App& app);
 void register_tessellate(CLI::App& app);

@@ -56,6 +56,16 @@ void warn_tags_lost(const Mesh& mesh, const sim::NumberFormat& format) {
   if (!warning.empty()) std::fprintf(stderr, "tessim: warning: %s\n", printable_text(warning, 960).c_str());
 }
 
+void warn_nyquist_shortfall(const TessSettings& s, const Mesh& mesh) {
+  const NyquistShortfall shortfall = nyquist_shortfall(s, mesh);
+  if (shortfall.edges == 0) return;
+  std::fprintf(stderr,
+               "tessim: warning: %s: --adaptive: %zu edges need more than %d segments for %g samples per wavelength "
+               "(up to %.0f) and are clamped to %d: their displacement still aliases (docs/patterns.md §9)\n",
+               printable_text(mesh.source.empty() ? std::string("mesh") : mesh.source, 960).c_str(), shortfall.edges,
+               kMaxTessFactor, s.samples_per_wavelength, std::ceil(shortfall.most_segments), kMaxTessFactor);
+}
+
 void check_output_paths(const std::vector<OutputPath>& outputs, const std::vector<InputPath>& inputs) {
   namespace fs = std::filesystem;
   std::vector<fs::path> seen;
@@ -540,6 +550,7 @@ std::shared_ptr<const MeshSilhouette> UnitPatternOptions::silhouette_for(std::op
     uniform.silhouette = parse_silhouette_option(silhouette);
   }
   bind_silhouette(*s, mesh);
+  warn_nyquist_shortfall(*s, mesh);
   if (!s->silhouette.blends() || !s->silhouette_field) return nullptr;
   const MeshSilhouette& field = *s->silhouette_field;
   if (field.counts().feature_ends > 0) {

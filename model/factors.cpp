@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "model/base/error.hpp"
 #include "model/pattern.hpp"
@@ -85,16 +87,16 @@ float silhouette_edge_factor(const ScreenCamera& camera, double outline_toleranc
   return static_cast<float>(clamp_factor(kChordErrorFactor * std::sqrt(offset_pixels / outline_tolerance)));
 }
 
-float nyquist_edge_factor(const DisplaceSettings& displace, double samples_per_wavelength, const glm::dvec3& a,
-                          const glm::dvec3& b) {
-  if (!displace.enabled()) return 1.0f;
+double nyquist_segments(const DisplaceSettings& displace, double samples_per_wavelength, const glm::dvec3& a,
+                        const glm::dvec3& b) {
+  if (!displace.enabled()) return 0.0;
   // The ends in lexicographic order: the same operations whichever patch asks.
   const bool swap = std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z);
   const glm::dvec3& p = swap ? b : a;
   const glm::dvec3& q = swap ? a : b;
   const glm::dvec3 chord = q - p;
   const double length = glm::length(chord);
-  if (!(length > 0.0)) return 1.0f;
+  if (!(length > 0.0)) return 0.0;
   double cycles = displace.frequency * length;  // noise: one wavelength per lattice cell
   if (displace.kind == DisplaceKind::Sine) {
     const glm::dvec3 e = chord / length;
@@ -104,7 +106,34 @@ float nyquist_edge_factor(const DisplaceSettings& displace, double samples_per_w
     };
     cycles *= std::min(1.0, std::max(rate(p), rate(q))) / (2.0 * M_PI);
   }
-  return static_cast<float>(clamp_factor(samples_per_wavelength * cycles));
+  return samples_per_wavelength * cycles;
+}
+
+float nyquist_edge_factor(const DisplaceSettings& displace, double samples_per_wavelength, const glm::dvec3& a,
+                          const glm::dvec3& b) {
+  return static_cast<float>(clamp_factor(nyquist_segments(displace, samples_per_wavelength, a, b)));
+}
+
+NyquistShortfall nyquist_shortfall(const TessSettings& s, const Mesh& mesh) {
+  NyquistShortfall shortfall;
+  const bool nyquist = s.kind == PatternKind::D3D11 && s.source == FactorSource::Adaptive &&
+                       (s.rule == AdaptiveRule::Nyquist || s.with_nyquist);
+  if (!nyquist) return shortfall;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(3 * mesh.triangle_count());
+  for (const glm::uvec3& tri : mesh.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t a = tri[i], b = tri[(i + 1) % 3];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (const auto& [a, b] : edges) {
+    const double segments = nyquist_segments(s.displace, s.samples_per_wavelength, mesh.positions[a], mesh.positions[b]);
+    if (segments > static_cast<double>(kMaxTessFactor)) ++shortfall.edges;
+    shortfall.most_segments = std::max(shortfall.most_segments, segments);
+  }
+  return shortfall;
 }
 
 void bind_silhouette(TessSettings& s, const Mesh& mesh) {

@@ -107,6 +107,19 @@ float silhouette_edge_factor(const ScreenCamera& camera, double outline_toleranc
 // ends are taken in a fixed order, so both patches of an edge get the same factor bit for bit.
 float nyquist_edge_factor(const DisplaceSettings& displace, double samples_per_wavelength, const glm::dvec3& a,
                           const glm::dvec3& b);
+// The segments the Nyquist rule asks of the edge a-b before the clamp to 1..64 (0 without a
+// displacement or for a zero-length edge).
+double nyquist_segments(const DisplaceSettings& displace, double samples_per_wavelength, const glm::dvec3& a,
+                        const glm::dvec3& b);
+
+// The mesh's edges (each pair of welded positions once) whose Nyquist rule asks for more than
+// the 64 segments a factor can give: their displacement still aliases. Zero edges unless `s`
+// uses the Nyquist rule (nyquist, screen+nyquist, silhouette+nyquist).
+struct NyquistShortfall {
+  std::size_t edges = 0;      // edges clamped below their Nyquist segments
+  double most_segments = 0.0;  // the largest segments asked of one edge
+};
+NyquistShortfall nyquist_shortfall(const TessSettings& s, const Mesh& mesh);
 
 // Resolves the silhouette's eye (the camera's for --silhouette camera and for the silhouette rule
 // without --silhouette) and builds the α of every edge of `mesh` into s.silhouette_field, unless

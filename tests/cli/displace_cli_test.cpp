@@ -5,6 +5,7 @@
 // the same vertices from `tessellate` and `sim`, and their misuse refused.
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -133,6 +134,34 @@ TEST(DisplaceCli, NyquistFactorsFollowTheSamplesPerWavelength) {
   const std::size_t result = rs.out.find("\nresult");
   ASSERT_NE(result, std::string::npos) << rs.out;
   EXPECT_EQ(printed_vertices(rs.out.substr(result)), v4) << rs.out;
+}
+
+// An edge that needs more than 64 segments is clamped and still aliases: the run says so, once,
+// with the count, and still writes its output; at a frequency the factors can follow, no warning.
+// One right triangle with legs of 1: noise at f asks S·f·ℓ segments, 80 and 113.1 at f = 20.
+TEST(DisplaceCli, NyquistClampIsWarned) {
+  TempDir dir;
+  const fs::path mesh = dir.path() / "tri.obj", out = dir.path() / "n.ply";
+  std::ofstream(mesh) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  auto noise = [&](const char* command, const char* f) {
+    return run_tessim({command, mesh.string(), "--adaptive", "nyquist", "-o", out.string(), "--displace", "noise",
+                       "--amplitude", "0.01", "--frequency", f},
+                      dir.path());
+  };
+  for (const char* command : {"tessellate", "sim"}) {
+    const auto r = noise(command, "20");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string warning = "3 edges need more than 64 segments for 4 samples per wavelength (up to 114)";
+    const std::size_t at = r.err.find(warning);
+    EXPECT_NE(at, std::string::npos) << command << ": " << r.err;
+    EXPECT_EQ(r.err.find(warning, at + 1), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("still aliases"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(out));
+    fs::remove(out);
+    const auto low = noise(command, "10");  // 40 and 56.6 segments
+    ASSERT_EQ(low.status, 0) << low.err;
+    EXPECT_EQ(low.err.find("warning"), std::string::npos) << low.err;
+  }
 }
 
 TEST(DisplaceCli, NyquistMisuseIsAnInputError) {

@@ -353,6 +353,37 @@ TEST(NyquistMesh, CombinedRuleIsThePerEdgeMaximum) {
   }
 }
 
+// The edges whose rule asks for more than 64 segments (they still alias; the CLI warns): for the
+// noise kind F = S·f·ℓ, so they are the edges longer than 64 / (S·f), each counted once.
+TEST(NyquistMesh, ShortfallCountsEachEdgeClampedAt64Once) {
+  const Mesh& mesh = wuson();
+  const double S = 4.0, f = 250.0;
+  std::set<std::pair<unsigned, unsigned>> edges;
+  for (const glm::uvec3& tri : mesh.triangles)
+    for (int i = 0; i < 3; ++i) edges.insert(std::minmax(tri[i], tri[(i + 1) % 3]));
+  std::size_t longer = 0;
+  double longest = 0.0;
+  for (const auto& [a, b] : edges) {
+    const double length = glm::length(mesh.positions[b] - mesh.positions[a]);
+    if (S * f * length > 64.0) ++longer;
+    longest = std::max(longest, length);
+  }
+  TessSettings s = nyquist(Partitioning::integer, noise(0.01, f));
+  s.samples_per_wavelength = S;
+  const NyquistShortfall shortfall = nyquist_shortfall(s, mesh);
+  EXPECT_EQ(shortfall.edges, longer);
+  EXPECT_GT(shortfall.edges, 0u);
+  EXPECT_LT(shortfall.edges, edges.size());
+  EXPECT_NEAR(shortfall.most_segments, S * f * longest, 1e-9 * S * f * longest);
+  // The combined rule counts the Nyquist part; without a Nyquist rule nothing is counted.
+  EXPECT_EQ(nyquist_shortfall(screen_and_nyquist(Partitioning::integer, noise(0.01, f)), mesh).edges, longer);
+  TessSettings screen = screen_and_nyquist(Partitioning::integer, noise(0.01, f));
+  screen.with_nyquist = false;
+  EXPECT_EQ(nyquist_shortfall(screen, mesh).edges, 0u);
+  // A low frequency asks for fewer than 64 segments everywhere.
+  EXPECT_EQ(nyquist_shortfall(nyquist(Partitioning::integer, noise(0.01, 1.0)), mesh).edges, 0u);
+}
+
 TEST(NyquistValidate, RefusesBadSettings) {
   TessSettings s = nyquist(Partitioning::integer, sine(0.02, 60.0));
   EXPECT_NO_THROW(validate(s, "x"));
