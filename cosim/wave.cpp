@@ -4,8 +4,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
+#include <ostream>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -51,6 +54,47 @@ std::string range(int width) {
   return r;
 }
 
+// Runs fst2vcd on `recording` and copies its standard output into `out`.
+void convert_to_vcd(const std::filesystem::path& recording, std::ostream& out, const std::filesystem::path& path) {
+  int pipe_fds[2];
+  if (::pipe(pipe_fds) != 0) throw std::runtime_error("cannot create a pipe for fst2vcd");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], 1);
+  posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
+  posix_spawn_file_actions_addclose(&actions, pipe_fds[1]);
+  std::vector<std::string> args{kFst2Vcd, "-f", recording.string()};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawnp(&pid, kFst2Vcd, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(pipe_fds[1]);
+  if (spawned != 0) {
+    ::close(pipe_fds[0]);
+    throw std::runtime_error("cannot run fst2vcd to write " + path.string());
+  }
+  std::vector<char> buffer(1 << 16);
+  bool write_failed = false;
+  for (;;) {
+    const ssize_t n = ::read(pipe_fds[0], buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    if (!write_failed) {
+      out.write(buffer.data(), n);
+      write_failed = !out;  // keep draining, so that fst2vcd is not left blocked on the pipe
+    }
+  }
+  ::close(pipe_fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (write_failed) throw InputError(path.string(), "output", "write failed (no space left on the file system?)");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("fst2vcd failed to convert the waveform into " + path.string());
+}
+
 }  // namespace
 
 WaveFormat wave_format(const std::filesystem::path& path, const std::string& option) {
@@ -78,7 +122,10 @@ std::filesystem::path wave_recording_path(const std::filesystem::path& path) {
   return tmp;
 }
 
-WaveTemporaries::WaveTemporaries(const std::filesystem::path& path) {
+WaveTemporaries::WaveTemporaries(const std::filesystem::path& path)
+    : bus_error_(path.string(),
+                 "the waveform could not be written: a file the FST writer maps could not grow (no space left on "
+                 "the file system?)") {
   const std::filesystem::path recording = wave_recording_path(path);
   for (const char* suffix : {"", ".hier", ".pak"}) {  // the FST writer's side files (fstapi.c)
     std::filesystem::path file = recording;
@@ -88,6 +135,58 @@ WaveTemporaries::WaveTemporaries(const std::filesystem::path& path) {
 }
 
 WaveTemporaries::~WaveTemporaries() = default;
+
+std::optional<std::string> fst_incomplete(const std::filesystem::path& fst) {
+  // Block types of the FST format (gtkwave's fstapi.h): header, value changes (three kinds),
+  // blackout, geometry, hierarchy (gzip, LZ4, LZ4 twice). 255 marks a block still being written.
+  enum : int { kHeader = 0, kValues = 1, kBlackout = 2, kGeometry = 3, kHierarchy = 4, kValuesAlias = 5,
+               kHierarchyLz4 = 6, kHierarchyLz4Duo = 7, kValuesAlias2 = 8 };
+  std::ifstream in(fst, std::ios::binary);
+  if (!in) return "cannot be read back";
+  in.seekg(0, std::ios::end);
+  const std::uint64_t size = static_cast<std::uint64_t>(in.tellg());
+  auto u64 = [&](std::uint64_t at) -> std::optional<std::uint64_t> {
+    unsigned char b[8];
+    in.seekg(static_cast<std::streamoff>(at));
+    if (!in.read(reinterpret_cast<char*>(b), 8)) return std::nullopt;
+    std::uint64_t v = 0;
+    for (unsigned char c : b) v = v << 8 | c;
+    return v;
+  };
+  std::uint64_t at = 0, values = 0, expected_values = 0;
+  bool geometry = false, hierarchy = false;
+  for (int block = 0; at < size; ++block) {
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(at));
+    const int type = in.get();
+    const std::optional<std::uint64_t> length = u64(at + 1);  // counts itself, not the type byte
+    if (type == EOF || !length || *length < 8 || *length > size - at - 1)
+      return "its block at byte " + std::to_string(at) + " runs past the end of the file (" + std::to_string(size) +
+             " bytes)";
+    if (block == 0) {
+      if (type != kHeader) return "it does not begin with an FST header";
+      const std::optional<std::uint64_t> count = u64(at + 65);  // the value-change sections written
+      if (!count) return "its header is cut short";
+      expected_values = *count;
+    } else if (type == kValues || type == kValuesAlias || type == kValuesAlias2) {
+      ++values;
+    } else if (type == kGeometry) {
+      geometry = true;
+    } else if (type == kHierarchy || type == kHierarchyLz4 || type == kHierarchyLz4Duo) {
+      hierarchy = true;
+    } else if (type != kBlackout) {
+      return "its block at byte " + std::to_string(at) + " has type " + std::to_string(type) +
+             " (unfinished or unknown)";
+    }
+    at += 1 + *length;
+  }
+  if (at == 0) return "it is empty";
+  if (values != expected_values)
+    return "it holds " + std::to_string(values) + " value-change sections where its header counts " +
+           std::to_string(expected_values);
+  if (!geometry || !hierarchy) return std::string("it has no ") + (geometry ? "hierarchy" : "geometry");
+  return std::nullopt;
+}
 
 std::filesystem::path gtkw_path(const std::filesystem::path& dump) {
   std::filesystem::path p = dump;
@@ -219,32 +318,29 @@ void finish_wave(const std::filesystem::path& path, const sim::HardwareConfig& h
       std::filesystem::remove(path, ec);
     }
   } remove_recording{recording};
+  if (const std::optional<std::string> why = fst_incomplete(recording))
+    throw InputError(path.string(), "output",
+                     "the waveform could not be written: the recording " + recording.filename().string() +
+                         " is incomplete, " + *why + " (no space left on the file system?)");
   AtomicOutput dump(path, true);
   if (wave_format(path) == WaveFormat::Fst) {
     std::error_code ec;
     std::filesystem::rename(recording, dump.temp_path(), ec);
     if (ec) throw std::runtime_error("cannot move the recording into " + path.string() + ": " + ec.message());
   } else {
-    const std::string in = recording.string(), out = dump.temp_path().string();
-    std::vector<std::string> args{kFst2Vcd, "-f", in, "-o", out};
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    if (posix_spawnp(&pid, kFst2Vcd, nullptr, nullptr, argv.data(), environ) != 0)
-      throw std::runtime_error("cannot run fst2vcd to write " + out);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw std::runtime_error("fst2vcd failed to convert the waveform into " + path.string());
+    // fst2vcd writes to a pipe and the dump's stream checks every write: fst2vcd does not check
+    // its own (a full file system would leave a truncated VCD and exit 0).
+    convert_to_vcd(recording, dump.stream(), path);
+    dump.stream().flush();
+    if (!dump.stream()) throw InputError(path.string(), "output", "write failed (no space left on the file system?)");
   }
   AtomicOutput gtkw(gtkw_path(path));
   gtkw.stream() << gtkw_text(path, hw, first_cycle, marker);
   // The layout is complete before the dump moves into place: a failure leaves neither.
   gtkw.stream().flush();
   if (!gtkw.stream()) throw std::runtime_error("cannot write " + gtkw_path(path).string());
-  dump.commit_external();
+  if (wave_format(path) == WaveFormat::Fst) dump.commit_external();
+  else dump.commit();
   gtkw.commit();
 }
 

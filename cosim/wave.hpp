@@ -48,7 +48,14 @@ class WaveTemporaries {
 
  private:
   std::vector<std::unique_ptr<PendingTemporary>> files_;
+  BusErrorExit bus_error_;  // the FST writer's mapped files on a full file system: exit 2, nothing left
 };
+
+// Why an FST file is not complete, or nothing when it is: its blocks (a type byte and a
+// big-endian length each) must tile the file exactly, starting with the header, and hold the
+// value-change sections the header counts, the geometry and the hierarchy. The FST writer does
+// not check its writes, so a full file system leaves a truncated file that it reports as written.
+std::optional<std::string> fst_incomplete(const std::filesystem::path& fst);
 
 // The gtkwave save file of a dump: the dump's path with the extension .gtkw.
 std::filesystem::path gtkw_path(const std::filesystem::path& dump);
@@ -61,10 +68,12 @@ struct WaveWindow {
 };
 
 // After the RTL closed its recording: moves it into place as the FST, or converts it to the VCD
-// (through a temporary, renamed into place), and writes the .gtkw for `hw` (signal widths follow
-// the configuration) opening at cycle `first_cycle`, with the marker on cycle `marker` (a
-// divergence) when given. The .gtkw names the dump relative to itself, so the pair can move
-// together. Throws std::runtime_error if fst2vcd fails.
+// (fst2vcd's standard output written through a temporary, renamed into place), and writes the
+// .gtkw for `hw` (signal widths follow the configuration) opening at cycle `first_cycle`, with the
+// marker on cycle `marker` (a divergence) when given. The .gtkw names the dump relative to itself,
+// so the pair can move together. Throws InputError when the recording is incomplete or a write
+// fails (a full file system: nothing is left in place), std::runtime_error if fst2vcd fails on a
+// complete recording.
 void finish_wave(const std::filesystem::path& path, const sim::HardwareConfig& hw, std::uint64_t first_cycle,
                  std::optional<std::uint64_t> marker = std::nullopt);
 

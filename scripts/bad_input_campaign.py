@@ -47,6 +47,8 @@ class Case:
     args: list[str]          # {data}/{work} are replaced by the fixture and working directories
     setup: list[str] = field(default_factory=list)  # names created in {work} before the run
     timeout: float = 60.0
+    full_fs: int | None = None  # {work} is a small tmpfs with this many KiB left free (root only)
+    full_stdout: bool = False   # standard output is /dev/full (every write fails with ENOSPC)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -409,6 +411,62 @@ def system_cases(mesh: str) -> list[Case]:
     ]
 
 
+FULL_FS_SIZE = "256k"  # the tmpfs of a full-file-system case
+
+
+def full_fs_cases(mesh: str) -> list[Case]:
+    """Every writer on a full file system (docs/architecture.md, Bad input): with no space left,
+    and with some left where the output is larger (a part of it would fit): exit 2, nothing left
+    but the file that filled the disk. The waveform cases cover the FST writer's unchecked writes
+    (a truncated recording) and its mapped files (SIGBUS)."""
+    cases: list[Case] = []
+    small = [
+        ["tessellate", mesh, "-L", "32", "-o", "{work}/o.ply"],
+        ["tessellate", mesh, "-L", "32", "--weld", "-o", "{work}/o.obj"],
+        ["render", mesh, "-L", "2", "--size", "64x64", "-o", "{work}/o.png"],
+        ["sim", mesh, "-L", "32", "-o", "{work}/o.ply"],
+        ["sim", mesh, "-L", "32", "--stats", "{work}/s.json"],
+        ["sim", mesh, "-L", "32", "--trace", "{work}/t.json"],
+        ["sim", mesh, "-L", "8", "--units", "2", "--stats", "{work}/s.json"],
+        ["pattern", "--outer", "3,2,2", "--inner", "2", "--partitioning", "integer", "-o", "{work}/p.svg"],
+        ["pattern", "--outer", "3,2,2", "--inner", "2", "--partitioning", "integer", "-o", "{work}/p.png"],
+        ["stpn-import", mesh, "-o", "{work}/s.ply"],
+        ["report", "{data}/sample.json", "-o", "{work}/r.html"],
+        ["power", mesh, "-L", "8", "--json", "{work}/p.json"],
+    ]
+    large = small[0:1] + small[3:6] + small[10:11]
+    waves = [["cosim", mesh, "-L", "8", "--wave-window", "0:4500", "--wave", "{work}/w." + ext] for ext in ("fst", "vcd")]
+    for args in small + waves:
+        cases.append(Case("full_fs", args, full_fs=0))
+    for args in large + waves:
+        cases.append(Case("full_fs", args, full_fs=16))
+    for args in waves:
+        for free in (48, 128):
+            cases.append(Case("full_fs", args, full_fs=free))
+    return cases
+
+
+def full_stdout_cases(mesh: str) -> list[Case]:
+    """What a command prints to standard output, when it cannot be written (/dev/full): exit 2.
+    (A file output written beside a summary that fails stays: it is complete, and the summary is
+    checked when the process flushes standard output at its end.)"""
+    return [Case("full_stdout", args, full_stdout=True) for args in [
+        ["schema"],
+        ["info", mesh],
+        ["info", mesh, "--json"],
+        ["compare", "{data}/sample.json", "{data}/sample.json"],
+        ["compare", "{data}/sample.json", "{data}/sample.json", "--csv"],
+        ["sim", mesh, "-L", "2"],
+        ["sim", mesh, "-L", "2", "--stats", "-"],
+        ["sim", mesh, "-L", "2", "-o", "-"],
+        ["tessellate", mesh, "-L", "2", "-o", "-"],
+        ["pattern", "--outer", "3,2,2", "--inner", "2", "--partitioning", "integer"],
+        ["pattern", "--outer", "3,2,2", "--inner", "2", "--partitioning", "integer", "--json"],
+        ["power", mesh, "-L", "4"],
+        ["cosim", mesh, "-L", "1"],
+    ]]
+
+
 def misc_cases(mesh: str) -> list[Case]:
     cases = [
         Case("cli", ["no-such-command"]),
@@ -467,7 +525,7 @@ def write_fixtures(data: Path, stats_sample: bytes | None) -> None:
     os.mkfifo(data / "fifo.json")
 
 
-def build_cases(data: Path) -> list[Case]:
+def build_cases(data: Path, full_fs: bool = True) -> list[Case]:
     mesh = str(CUBE)
     cases: list[Case] = []
     for name in sorted(os.listdir(data / "meshes")):
@@ -494,7 +552,31 @@ def build_cases(data: Path) -> list[Case]:
     for special in ("/dev/zero", "{data}/fifo.json", "{data}", "{data}/does_not_exist.png"):
         cases.append(Case("image", ["report", "{data}/sample.json", "--image", special, "-o", "{work}/r.html"], timeout=20))
     cases += option_cases(mesh) + factor_cases(mesh) + output_cases(mesh) + ge_cases(mesh) + system_cases(mesh) + misc_cases(mesh)
+    if Path("/dev/full").exists():
+        cases += full_stdout_cases(mesh)
+    if full_fs:
+        cases += full_fs_cases(mesh)
     return cases
+
+
+def can_mount_tmpfs(where: Path) -> bool:
+    """Whether a small tmpfs can be mounted here (root, and a kernel that lets it)."""
+    if os.geteuid() != 0 or not shutil.which("mount"):
+        return False
+    where.mkdir(parents=True, exist_ok=True)
+    if subprocess.run(["mount", "-t", "tmpfs", "-o", "size=" + FULL_FS_SIZE, "tmpfs", str(where)],
+                      capture_output=True).returncode != 0:
+        return False
+    subprocess.run(["umount", "-l", str(where)], capture_output=True)
+    return True
+
+
+def fill(work: Path, free_kib: int) -> None:
+    """Leaves free_kib KiB free on the file system of `work`: a file `fill` takes the rest."""
+    st = os.statvfs(work)
+    available = st.f_bavail * st.f_frsize
+    with open(work / "fill", "wb") as f:
+        f.write(b"\0" * max(0, available - free_kib * 1024))
 
 
 def snapshot(work: Path) -> list[tuple[str, int]]:
@@ -512,16 +594,27 @@ def prepare(work: Path, setup: list[str]) -> None:
 
 def run_case(tessim: str, data: Path, root: Path, index: int, case: Case) -> dict:
     work = root / f"case{index:04d}"
-    prepare(work, case.setup)
+    mounted = False
+    if case.full_fs is not None:
+        work.mkdir(parents=True)
+        subprocess.run(["mount", "-t", "tmpfs", "-o", "size=" + FULL_FS_SIZE, "tmpfs", str(work)], check=True)
+        mounted = True
+        for item in case.setup:
+            (work / item).write_text("kept\n")
+        fill(work, case.full_fs)
+    else:
+        prepare(work, case.setup)
     before = snapshot(work)
     args = [a.replace("{data}", str(data)).replace("{work}", str(work)) for a in case.args]
     env = dict(os.environ, ASAN_OPTIONS="detect_leaks=1:abort_on_error=0", UBSAN_OPTIONS="print_stacktrace=1")
     started = time.monotonic()
     problems: list[str] = []
     try:
-        p = subprocess.run([tessim] + args, cwd=work, stdin=subprocess.DEVNULL, capture_output=True,
-                           timeout=case.timeout, env=env)
-        status, out, err = p.returncode, p.stdout, p.stderr
+        with open("/dev/full" if case.full_stdout else os.devnull, "wb") as full:
+            p = subprocess.run([tessim] + args, cwd=work, stdin=subprocess.DEVNULL,
+                               stdout=full if case.full_stdout else subprocess.PIPE, stderr=subprocess.PIPE,
+                               timeout=case.timeout, env=env)
+        status, out, err = p.returncode, p.stdout or b"", p.stderr
     except subprocess.TimeoutExpired as e:
         status, out, err = None, e.stdout or b"", e.stderr or b""
         problems.append(f"did not end within {case.timeout:g} s")
@@ -541,6 +634,8 @@ def run_case(tessim: str, data: Path, root: Path, index: int, case: Case) -> dic
     after = snapshot(work)
     if after != before:
         problems.append(f"left behind: {sorted(set(after) - set(before))}")
+    if mounted:
+        subprocess.run(["umount", "-l", str(work)], check=False)
     shutil.rmtree(work, ignore_errors=True)
     first_line = text.splitlines()[0] if text else ""
     return {"group": case.group, "args": [a[:200] for a in args], "status": status, "seconds": round(seconds, 3),
@@ -573,7 +668,11 @@ def main() -> int:
             return 1
         write_fixtures(data, sample.read_bytes())
         shutil.copy(sample, data / "sample.json")
-        cases = build_cases(data)
+        full_fs = can_mount_tmpfs(Path(tmp) / "mount_check")
+        if not full_fs:
+            print("bad_input_campaign: full-file-system cases skipped: mounting a small tmpfs needs root",
+                  file=sys.stderr)
+        cases = build_cases(data, full_fs)
         if a.count:
             print(len(cases))
             return 0

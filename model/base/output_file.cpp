@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -69,6 +70,26 @@ void install_handlers_once() {
       ::sigaction(sig, &sa, nullptr);
     }
   });
+}
+
+// SIGBUS while a BusErrorExit exists: the temporaries go, the message is printed, status 2.
+constexpr std::size_t kBusMessageBytes = 1024;
+char g_bus_message[kBusMessageBytes] = {};
+std::atomic<std::size_t> g_bus_message_length{0};
+std::mutex g_bus_mutex;
+int g_bus_depth = 0;  // guarded by g_bus_mutex
+struct sigaction g_bus_previous = {};
+
+extern "C" void remove_temporaries_and_exit(int /*sig*/) {
+  for (Slot& slot : g_slots)
+    if (slot.state.load(std::memory_order_acquire) == kPending) ::unlink(slot.path);
+  const std::size_t length = g_bus_message_length.load(std::memory_order_acquire);
+  for (std::size_t done = 0; done < length;) {
+    const ssize_t n = ::write(2, g_bus_message + done, length - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  ::_exit(2);
 }
 
 // Returns the slot now holding `path`, or -1 when the table is full or the path too long (the
@@ -161,6 +182,31 @@ void PendingTemporary::keep() {
   // reused).
   unregister_temporary(slot_);
   slot_ = -2;
+}
+
+BusErrorExit::BusErrorExit(const std::string& file, const std::string& reason) {
+  std::string message = "tessim: error: " + printable_text(file, 240) + ": output: " + printable_text(reason, 480) + "\n";
+  message.resize(std::min(message.size(), kBusMessageBytes));
+  const std::lock_guard<std::mutex> lock(g_bus_mutex);
+  previous_message_.assign(g_bus_message, g_bus_message_length.load(std::memory_order_acquire));
+  g_bus_message_length.store(0, std::memory_order_release);
+  std::memcpy(g_bus_message, message.data(), message.size());
+  g_bus_message_length.store(message.size(), std::memory_order_release);
+  if (g_bus_depth++ == 0) {
+    struct sigaction sa = {};
+    sa.sa_handler = remove_temporaries_and_exit;
+    sigemptyset(&sa.sa_mask);
+    for (int other : kCleanupSignals) sigaddset(&sa.sa_mask, other);
+    ::sigaction(SIGBUS, &sa, &g_bus_previous);
+  }
+}
+
+BusErrorExit::~BusErrorExit() {
+  const std::lock_guard<std::mutex> lock(g_bus_mutex);
+  if (--g_bus_depth == 0) ::sigaction(SIGBUS, &g_bus_previous, nullptr);
+  g_bus_message_length.store(0, std::memory_order_release);
+  std::memcpy(g_bus_message, previous_message_.data(), previous_message_.size());
+  g_bus_message_length.store(previous_message_.size(), std::memory_order_release);
 }
 
 AtomicOutput::AtomicOutput(std::filesystem::path target, bool binary)

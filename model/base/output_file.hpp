@@ -57,6 +57,22 @@ class PendingTemporary {
   int slot_ = -1;  // entry in the table of temporaries the signal handler removes
 };
 
+// While one exists, SIGBUS — what a store through a memory-mapped file raises when the file
+// system cannot back it, as on a full disk under a library that maps the files it writes (the FST
+// writer maps its hierarchy and value tables) — removes every pending temporary, prints
+// "tessim: error: FILE: output: REASON" and exits with status 2 (a failed write) instead of
+// dying of the signal with the temporaries left behind. The innermost one's message is printed.
+class BusErrorExit {
+ public:
+  BusErrorExit(const std::string& file, const std::string& reason);
+  BusErrorExit(const BusErrorExit&) = delete;
+  BusErrorExit& operator=(const BusErrorExit&) = delete;
+  ~BusErrorExit();
+
+ private:
+  std::string previous_message_;
+};
+
 class AtomicOutput {
  public:
   explicit AtomicOutput(std::filesystem::path target, bool binary = false);

@@ -8,9 +8,11 @@
 #include <exception>
 #include <memory>
 #include <string>
+#include <vector>
 
 struct tessim_image_out {
   std::unique_ptr<OIIO::ImageOutput> out;
+  std::string path;
   bool closed = false;
 };
 
@@ -36,6 +38,7 @@ int tessim_image_open(const char* path, int png, int width, int height, tessim_i
     OIIO::ImageSpec spec(width, height, 3, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::HALF);
     spec.attribute("oiio:ColorSpace", png ? "sRGB" : "Linear");
     if (!handle->out->open(path, spec)) return report(err, err_size, handle->out->geterror());
+    handle->path = path;
     *out = handle.release();
     return 0;
   } catch (const std::exception& e) {
@@ -59,6 +62,15 @@ int tessim_image_close(tessim_image_out* out, char* err, size_t err_size) {
     if (out->closed) return 0;
     out->closed = true;
     if (!out->out->close()) return report(err, err_size, out->out->geterror());
+    // OpenImageIO's PNG and EXR writers do not see a failed write (a full file system leaves an
+    // empty or cut file and a successful close): the file must read back whole.
+    const OIIO::ImageSpec spec = out->out->spec();
+    auto in = OIIO::ImageInput::open(out->path);
+    std::vector<unsigned char> pixels(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) * 3 * 2);
+    if (!in || !in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT16, pixels.data())) {
+      OIIO::geterror();  // clear OpenImageIO's pending global error
+      return report(err, err_size, "write failed: the written image does not read back (no space left on the file system?)");
+    }
     return 0;
   } catch (const std::exception& e) {
     return report(err, err_size, e.what());

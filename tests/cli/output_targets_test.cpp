@@ -8,6 +8,7 @@
 // to see them fail).
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/mount.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <sys/wait.h>
@@ -527,6 +528,70 @@ TEST(BadOutputFullStdout, WhatIsPrintedMustReachStandardOutput) {
     EXPECT_EQ(status_with_full_stdout(args, &err), 2) << joined(args) << "\n" << err;
     EXPECT_TRUE(contains(err, "standard output")) << joined(args) << ": " << err;
   }
+}
+
+// A small tmpfs mounted on a directory for as long as it lives (root only); `mounted()` false
+// when it could not be mounted.
+class SmallFileSystem {
+ public:
+  SmallFileSystem(const fs::path& dir, const std::string& size) : dir_(dir) {
+    fs::create_directories(dir_);
+    mounted_ = ::geteuid() == 0 && ::mount("tmpfs", dir_.c_str(), "tmpfs", 0, ("size=" + size).c_str()) == 0;
+  }
+  ~SmallFileSystem() {
+    if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
+  }
+  bool mounted() const { return mounted_; }
+  // Leaves `free_kib` KiB free: a file "fill" takes the rest.
+  void leave_free(std::uintmax_t free_kib) const {
+    fs::remove(dir_ / "fill");
+    const std::uintmax_t space = fs::space(dir_).available;
+    const std::uintmax_t fill = space > free_kib * 1024 ? space - free_kib * 1024 : 0;
+    std::ofstream(dir_ / "fill", std::ios::binary) << std::string(fill, '\0');
+  }
+
+ private:
+  fs::path dir_;
+  bool mounted_ = false;
+};
+
+// A waveform on a full file system: the FST writer neither checks its writes nor survives a
+// mapped file it cannot grow (SIGBUS); every run must end in exit 2 with one message naming the
+// dump, and leave nothing but the file that filled the disk. From no space at all to space for
+// part of the recording (a truncated FST), and a VCD whose recording fits but whose conversion
+// does not.
+TEST(BadOutputFullDisk, AWaveformThatDoesNotFitLeavesNothing) {
+  const TempDir dir;
+  const fs::path small = dir.path() / "small";
+  const SmallFileSystem fs_small(small, "128k");
+  if (!fs_small.mounted()) GTEST_SKIP() << "mounting a small tmpfs needs root";
+  const std::vector<std::string> cosim{"cosim", kCube.string(), "-L", "8", "--wave-window", "0:4500", "--quiet"};
+  for (const char* dump : {"w.fst", "w.vcd"})
+    for (const std::uintmax_t free_kib : {0u, 8u, 24u, 48u, 96u}) {
+      fs_small.leave_free(free_kib);
+      std::vector<std::string> args = cosim;
+      args.insert(args.end(), {"--wave", dump});
+      const TessimRun r = tessim(args, small);
+      const std::string what = std::string(dump) + " with " + std::to_string(free_kib) + " KiB free";
+      EXPECT_EQ(r.status, 2) << what << ": " << r.err;
+      EXPECT_EQ(r.err.rfind(std::string("tessim: error: ") + dump + ": output: ", 0), 0u) << what << ": " << r.err;
+      EXPECT_EQ(listing(small), " fill") << what;
+    }
+  // The recording fits (about 1.1 MB), its 48 MB VCD does not.
+  const fs::path mid = dir.path() / "mid";
+  const SmallFileSystem fs_mid(mid, "4m");
+  ASSERT_TRUE(fs_mid.mounted());
+  std::vector<std::string> args = cosim;
+  args.insert(args.end(), {"--wave", "w.vcd"});
+  const TessimRun r = tessim(args, mid);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "tessim: error: w.vcd: output: write failed")) << r.err;
+  EXPECT_EQ(listing(mid), " (empty)");
+  // The same run with room writes both files: the checks do not refuse a complete waveform.
+  const TessimRun ok = tessim(args, dir.path());
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_GT(fs::file_size(dir.path() / "w.vcd"), 40'000'000u);
+  EXPECT_TRUE(fs::exists(dir.path() / "w.gtkw"));
 }
 
 TEST(BadInputNumbers, OnlyDecimalNumbersInSubOptions) {
