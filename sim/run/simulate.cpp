@@ -323,8 +323,19 @@ SimResult simulate_system(RunSetup& setup) {
   // the run (order check, hooks, output file). The simulator's buffer, not the hardware's.
   const bool unordered = cfg.reassembly == Reassembly::Unordered;
   StreamOrder stream_order;
-  auto run = [&](auto&& tick) {
+  // Fast-forward as one unit does (docs/microarchitecture.md §11), asked after a cycle in which no
+  // port took a vertex.
+  const bool fast_forward = hooks.fast_forward;
+  auto run = [&](auto&& tick, auto&& skip) {
     while (accepted < total) {
+      if (fast_forward && system.emitted().empty()) {
+        const std::uint64_t n = skip(source.available(), source.front(), watchdog.cycles_left(cycle));
+        if (n > 0) {
+          cycle += n;
+          watchdog.check(cycle);
+          continue;
+        }
+      }
       const bool tri_valid = source.available();
       if (tick(tri_valid, source.front())) {
         if (unordered) stream_order.dispatched(source.front().id);
@@ -345,10 +356,16 @@ SimResult simulate_system(RunSetup& setup) {
   const int threads = std::min(hooks.system_threads, cfg.units);
   if (threads > 1) {
     ThreadedSystem threaded(system, threads);
-    run([&](bool tri_valid, const TriangleFx& tri) { return threaded.tick(tri_valid, tri); });
+    run([&](bool tri_valid, const TriangleFx& tri) { return threaded.tick(tri_valid, tri); },
+        [&](bool tri_valid, const TriangleFx& tri, std::uint64_t limit) {
+          return threaded.fast_forward(tri_valid, tri, limit);
+        });
     threaded.finish();
   } else {
-    run([&](bool tri_valid, const TriangleFx& tri) { return system.tick(tri_valid, tri); });
+    run([&](bool tri_valid, const TriangleFx& tri) { return system.tick(tri_valid, tri); },
+        [&](bool tri_valid, const TriangleFx& tri, std::uint64_t limit) {
+          return system.fast_forward(tri_valid, tri, limit);
+        });
   }
   SystemResult sys;
   sys.stats = system.stats();

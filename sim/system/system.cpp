@@ -149,6 +149,66 @@ bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
   return take;
 }
 
+std::uint64_t UnitSystem::fast_forward(bool tri_valid, const TriangleFx& tri, std::uint64_t limit) {
+  if (limit == 0) return 0;
+  for (int u = 0; u < units(); ++u) {
+    const Unit& unit = units_[static_cast<std::size_t>(u)];
+    UnitOutputs& o = outputs_[static_cast<std::size_t>(u)];
+    o.tri_ready = unit.tri_ready();
+    o.vtx_valid = unit.vtx_valid();
+    o.vtx = o.vtx_valid ? &unit.vtx() : nullptr;
+  }
+  // The distributor: a triangle it would take moves data; one refused waits through the stretch
+  // (the units' tri_ready and the distributor's counts hold, so its choice does).
+  const bool stalled = tri_valid;
+  if (tri_valid && outputs_[static_cast<std::size_t>(choose(tri, outputs_.data()))].tri_ready) return 0;
+  // The buffer admits nothing (the rule of coordinate(), with no admission before it): each
+  // unit offering a vertex stays blocked.
+  const bool ordered = cfg_.reassembly == Reassembly::Ordered;
+  const int r = cfg_.reorder_slots;
+  std::uint64_t blocked = 0;
+  for (int u = 0; u < units(); ++u) {
+    if (!outputs_[static_cast<std::size_t>(u)].vtx_valid) continue;
+    const bool oldest = !ordered || (order_count_ > 0 && order_[order_head_].unit == u &&
+                                     order_[order_head_].id == outputs_[static_cast<std::size_t>(u)].vtx->id);
+    if (occupancy_ < (oldest ? r : r - 1)) return 0;
+    ++blocked;
+  }
+  // The ports see the same buffer every cycle: a vertex for them or none.
+  bool available = false;
+  if (ordered) {
+    available = order_count_ > 0 && queues_[static_cast<std::size_t>(order_[order_head_].unit)].count > 0;
+  } else {
+    for (const Queue& q : queues_) available = available || q.count > 0;
+  }
+  std::uint64_t n = limit;
+  for (const Gpe& port : ports_) n = std::min(n, port.quiet_cycles(available));
+  if (n == 0) return 0;
+  idle_inputs_.tri_valid = false;
+  idle_inputs_.vtx_ready = false;
+  for (const Unit& unit : units_) {
+    if (!unit.te_quiet()) return 0;
+    n = std::min(n, unit.quiet_cycles(idle_inputs_));
+    if (n == 0) return 0;
+  }
+  // n cycles, as n calls of tick() would count them.
+  for (Unit& unit : units_)
+    if (unit.skip(n, idle_inputs_) != n) throw std::logic_error("UnitSystem::fast_forward: a quiet unit skipped less");
+  for (Gpe& port : ports_) {
+    const GpeCycle c = port.skip(n, available, false);
+    if (c.spare) (order_count_ == 0 ? stats_.ports_waiting_stream : stats_.ports_waiting_unit) += n;
+  }
+  stats_.cycles += n;
+  stats_.max_occupancy = std::max(stats_.max_occupancy, occupancy_);
+  stats_.occupancy_histogram[static_cast<std::size_t>(std::min(15, occupancy_ * 16 / r))] += n;
+  stats_.unit_blocked += blocked * n;
+  if (stalled) stats_.dispatch_stalls += n;
+  emitted_.clear();
+  std::fill(admit_.begin(), admit_.end(), std::uint8_t{0});
+  dispatched_to_ = -1;
+  return n;
+}
+
 bool UnitSystem::coordinate(bool tri_valid, const TriangleFx& tri, const UnitOutputs* outputs) {
   ++stats_.cycles;
   const int r = cfg_.reorder_slots;

@@ -60,6 +60,14 @@ class UnitSystem {
   // then dispatched_to() (the unit that takes `tri`, or -1) and admitted(u) (its vertex enters the
   // buffer: vtx_ready).
   bool coordinate(bool tri_valid, const TriangleFx& tri, const UnitOutputs* outputs);
+  // Fast-forward (docs/microarchitecture.md §11, §13): in place of up to `limit` tick(tri_valid,
+  // tri) calls, the cycles from now in which no data moves anywhere in the system — no triangle
+  // dispatched, no vertex admitted into the buffer or taken by a port, every unit quiet with its
+  // TE quiet (Unit::quiet_cycles, te_quiet) and every port in a countdown or waiting without a
+  // vertex (Gpe::quiet_cycles) — taken at once. Returns how many (0: the next cycle moves data or
+  // cannot be skipped; call tick()). Every counter and statistic is as after that many tick()
+  // calls; emitted() is empty.
+  std::uint64_t fast_forward(bool tri_valid, const TriangleFx& tri, std::uint64_t limit);
   int dispatched_to() const { return dispatched_to_; }
   bool admitted(int u) const { return admit_[static_cast<std::size_t>(u)] != 0; }
   Unit& unit(int u) { return units_[static_cast<std::size_t>(u)]; }

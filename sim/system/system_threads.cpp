@@ -324,6 +324,15 @@ bool ThreadedSystem::tick(bool tri_valid, const TriangleFx& tri) {
   return take;
 }
 
+std::uint64_t ThreadedSystem::fast_forward(bool tri_valid, const TriangleFx& tri, std::uint64_t limit) {
+  if (finished_) throw std::logic_error("ThreadedSystem: fast_forward() after finish()");
+  if (parallel_) return 0;
+  // Not counted in the mode's window: a stretch taken at once says nothing of a cycle's cost.
+  const std::uint64_t n = system_.fast_forward(tri_valid, tri, limit);
+  cycle_ += n;
+  return n;
+}
+
 void ThreadedSystem::choose_mode() {
   const std::uint64_t window = alternate_every_ > 0 ? alternate_every_ : kWindow;
   if (++window_cycles_ < window) return;

@@ -49,6 +49,9 @@ class ThreadedSystem {
   // One cycle, as UnitSystem::tick(): `tri` is offered when tri_valid; returns whether the
   // distributor took it; system().emitted() holds what the ports took. On the calling thread.
   bool tick(bool tri_valid, const TriangleFx& tri);
+  // UnitSystem::fast_forward() in the serial mode (0 in the parallel one, whose units run ahead
+  // of the coordinator); the skipped cycles count as ticked.
+  std::uint64_t fast_forward(bool tri_valid, const TriangleFx& tri, std::uint64_t limit);
   // The run ends after the cycles ticked so far: every unit is clocked to the same cycle count and
   // the helpers are joined; then the system's units read as after as many UnitSystem::tick() calls.
   void finish();

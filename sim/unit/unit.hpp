@@ -83,6 +83,8 @@ class Unit {
   static constexpr std::uint64_t kForever = CpgBlock::kForever;
   std::uint64_t quiet_cycles(const UnitInputs& in) const;
   std::uint64_t skip(std::uint64_t n, const UnitInputs& in, std::uint64_t issuing_limit = kForever);
+  // The TE has nothing to issue and nothing in flight: skip() takes all n cycles at once.
+  bool te_quiet() const { return te_.quiet(); }
 
   const UnitCounters& stats() const { return counters_.stats(); }
   const ClassCounts<TeClass>& te_class_cycles() const { return counters_.te_class_cycles(); }
