@@ -31,6 +31,7 @@
 #include "sim/run/schedule.hpp"
 #include "sim/run/simulate.hpp"
 #include "sim/run/trace.hpp"
+#include "sim/system/system_threads.hpp"
 
 namespace tessim::app {
 
@@ -126,12 +127,12 @@ int parse_count_or_auto(const std::string& text, const char* option, int max, co
 // --chunks: a count, or 0 for auto (resolved once the mesh's triangles are known).
 int parse_chunks(const std::string& text) { return parse_count_or_auto(text, "--chunks", sim::kMaxChunks, "chunks"); }
 
-// --threads: a count (at most one per unit is used), or auto: one per hardware thread unless
-// chunks run on them already.
-int system_threads(const std::string& text, int chunks) {
+// --threads: a count (at most one per unit is used), or auto: the idle hardware threads when
+// enough are idle for the parallel mode to pay (sim::auto_system_threads), one with chunks.
+int system_threads(const std::string& text, int chunks, int units) {
   const int t = parse_count_or_auto(text, "--threads", 64, "threads");
   if (t != 0) return t;
-  return chunks != 1 ? 1 : static_cast<int>(std::min(std::max(1u, std::thread::hardware_concurrency()), 64u));
+  return chunks != 1 ? 1 : std::min(sim::auto_system_threads(units), 64);
 }
 
 void run_sim(const SimArgs& a, const ConfigFlags& flags) {
@@ -236,7 +237,7 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   sim::SimHooks hooks;
   hooks.measure_errors = a.errors;
   hooks.fast_forward = !a.no_fast_forward;
-  hooks.system_threads = system_threads(a.threads, chunks);
+  hooks.system_threads = system_threads(a.threads, chunks, cfg.units);
   std::unique_ptr<MeshWriter> writer;
   std::unique_ptr<WeldingWriter> welder;
   std::vector<WeldKey> keys;
@@ -385,7 +386,8 @@ void register_sim(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--threads", args->threads,
                   "T: threads that clock a system of --units M units (1..64, at most M are used; or auto: one per "
-                  "hardware thread, 1 with --chunks); every cycle and bit the same whatever T "
+                  "idle hardware thread when at least 4 are idle, else 1, and 1 with --chunks); every cycle and "
+                  "bit the same whatever T "
                   "(docs/microarchitecture.md §13, Threaded runs)")
       ->capture_default_str();
   sub->add_flag("--no-fast-forward", args->no_fast_forward,

@@ -2,7 +2,12 @@
 // loop of a co-simulation, without the RTL) and of a whole-mesh run on a real mesh.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <filesystem>
+#include <thread>
 #include <vector>
 
 #include "model/factors.hpp"
@@ -10,6 +15,7 @@
 #include "sim/config/config.hpp"
 #include "sim/run/simulate.hpp"
 #include "sim/run/testbench.hpp"
+#include "sim/system/system_threads.hpp"
 #include "sim/unit/unit.hpp"
 #include "sim/values/host.hpp"
 
@@ -103,6 +109,47 @@ BENCHMARK(BM_SystemMesh)
     ->ArgsProduct({{2, 4, 8, 16}, {1, 2}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// `--threads auto` against one thread (docs/results/performance.md): the open case of
+// BM_SystemMesh with four units, alone on the machine and beside a CPU hog (one spinning thread
+// per hardware thread, started before the run and stopped after it). Args: hog (0/1), threads (0:
+// auto, as the command line resolves it now, or a count).
+void BM_SystemThreadsAuto(benchmark::State& state) {
+  UnitConfig cfg = config(2, 1, 16);
+  cfg.units = 4;
+  cfg.ge_ports = 4;
+  cfg.reorder_slots = 65536;
+  cfg.validate("benchmark");
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> hog;
+  if (state.range(0) != 0) {
+    const unsigned n = std::max(1u, std::thread::hardware_concurrency());
+    for (unsigned i = 0; i < n; ++i)
+      hog.emplace_back([&stop] {
+        volatile std::uint64_t x = 0;
+        while (!stop.load(std::memory_order_relaxed)) x = x + 1;
+      });
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the hog shows in /proc/loadavg
+  }
+  SimHooks hooks;
+  std::uint64_t cycles = 0;
+  int threads = 0;
+  for (auto _ : state) {
+    threads = state.range(1) == 0 ? auto_system_threads(cfg.units) : static_cast<int>(state.range(1));
+    hooks.system_threads = threads;
+    cycles += simulate(wuson(), cfg, hooks).system->stats.cycles;
+  }
+  stop = true;
+  for (std::thread& t : hog) t.join();
+  state.counters["cycles/s"] = benchmark::Counter(static_cast<double>(cycles), benchmark::Counter::kIsRate);
+  state.counters["threads"] = threads;
+}
+BENCHMARK(BM_SystemThreadsAuto)
+    ->ArgNames({"hog", "threads"})
+    ->ArgsProduct({{0, 1}, {1, 2, 0}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
 
 }  // namespace
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -481,6 +482,26 @@ void ThreadedSystem::finish() {
       throw std::logic_error("ThreadedSystem: unit " + std::to_string(u) + " took " + std::to_string(done) +
                              " clock edges in a run of " + std::to_string(cycle_) + " cycles");
   }
+}
+
+int auto_system_threads(int units, unsigned hardware_threads, unsigned runnable) {
+  const unsigned busy = runnable > 0 ? runnable - 1 : 0;  // the caller's own thread is not load
+  const unsigned idle = hardware_threads > busy ? hardware_threads - busy : 0;
+  if (idle < kAutoMinIdleThreads || units < 2) return 1;
+  return static_cast<int>(std::min<unsigned>(idle, static_cast<unsigned>(units)));
+}
+
+int auto_system_threads(int units) {
+  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  unsigned runnable = hardware + 1;  // unknown: as if every hardware thread were busy
+  // /proc/loadavg: "0.52 0.58 0.59 3/512 12345": the fourth field is runnable/total tasks.
+  if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+    double a = 0, b = 0, c = 0;
+    unsigned running = 0, total = 0;
+    if (std::fscanf(f, "%lf %lf %lf %u/%u", &a, &b, &c, &running, &total) == 5) runnable = running;
+    std::fclose(f);
+  }
+  return auto_system_threads(units, hardware, runnable);
 }
 
 }  // namespace tessim::sim

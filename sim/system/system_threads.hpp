@@ -36,6 +36,17 @@
 
 namespace tessim::sim {
 
+// What `--threads auto` takes for a system of `units` units (docs/microarchitecture.md §13): the
+// parallel mode pays only on cores of its own. On two idle cores it ran at 0.92-1.35x the speed
+// of one thread, and with another process competing for them 2-8x slower, so auto takes one thread
+// per idle hardware thread (at most one per unit) when at least kAutoMinIdleThreads are idle, and
+// one thread otherwise. `runnable` is the machine's count of runnable tasks, the caller included.
+inline constexpr unsigned kAutoMinIdleThreads = 4;
+int auto_system_threads(int units, unsigned hardware_threads, unsigned runnable);
+// The same for this machine, now: std::thread::hardware_concurrency() and the runnable tasks of
+// /proc/loadavg (all of them busy when it cannot be read).
+int auto_system_threads(int units);
+
 class ThreadedSystem {
  public:
   // `threads` >= 1 threads in all (the calling one included), at most one per unit. The system

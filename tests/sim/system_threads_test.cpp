@@ -121,6 +121,22 @@ bool same_run(const UnitConfig& cfg, const std::vector<TriangleFx>& tris, int th
   return !::testing::Test::HasFailure();
 }
 
+// --threads auto: one thread unless at least four hardware threads are idle (on two cores the
+// parallel mode was 0.92-1.35x one thread idle and 2-8x slower loaded), then one per idle
+// hardware thread, at most one per unit; the caller's own runnable task is not load.
+TEST(AutoThreads, OneThreadUnlessFourHardwareThreadsAreIdle) {
+  EXPECT_EQ(auto_system_threads(16, 2, 1), 1);   // two idle cores
+  EXPECT_EQ(auto_system_threads(16, 2, 3), 1);   // two cores, two hogs
+  EXPECT_EQ(auto_system_threads(16, 4, 1), 4);   // four idle
+  EXPECT_EQ(auto_system_threads(16, 4, 2), 1);   // one of four busy: three idle
+  EXPECT_EQ(auto_system_threads(16, 8, 3), 6);   // two of eight busy
+  EXPECT_EQ(auto_system_threads(3, 8, 1), 3);    // at most one per unit
+  EXPECT_EQ(auto_system_threads(1, 8, 1), 1);    // one unit
+  EXPECT_EQ(auto_system_threads(16, 8, 20), 1);  // overloaded
+  EXPECT_EQ(auto_system_threads(16, 8, 0), 8);   // a count without the caller
+  EXPECT_GE(auto_system_threads(16), 1);         // this machine, whatever its load
+}
+
 TEST(ThreadedSystem, EveryCycleAsOneThreadAcrossPoliciesBuffersStallsAndFactors) {
   int runs = 0;
   for (const bool adaptive : {false, true}) {
