@@ -113,7 +113,7 @@ def workload_run(tessim, build, name, args, work):
             old.unlink()
         env = dict(os.environ, TESSIM_RTL_COVERAGE_FILE=str(work / f"{name}.dat"))
         start = time.monotonic()
-        run([tessim, "cosim", *args, "--variant", build["name"]], env)
+        run([tessim, "cosim", *args, *build["flags"], "--variant", build["name"]], env)
         run([tessim, "sim", *args, *build["flags"], "--stats", str(stats_path)])
         print(f"  {name}: {time.monotonic() - start:.0f} s", file=sys.stderr, flush=True)
     files = sorted(work.glob(f"{name}.dat.*"))
@@ -139,7 +139,7 @@ def window_activity(tessim, build, name, args, work, cycles):
         return {k: {s: tuple(v) for s, v in d.items()} for k, d in json.loads(out_path.read_text()).items()}
     start = max(0, cycles // 2 - WINDOW // 2)
     vcd = Path(work) / f"{name}.vcd"
-    run([tessim, "cosim", *args, "--variant", build["name"], "--wave", str(vcd), "--wave-window",
+    run([tessim, "cosim", *args, *build["flags"], "--variant", build["name"], "--wave", str(vcd), "--wave-window",
          f"{start}:{start + WINDOW - 1}"])
     result = read_window(vcd)
     vcd.unlink()
