@@ -122,7 +122,7 @@ VertexFx UnitSystem::pop(int unit) {
   return slot.vertex;
 }
 
-bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
+void UnitSystem::read_outputs() {
   for (int u = 0; u < units(); ++u) {
     const Unit& unit = units_[static_cast<std::size_t>(u)];
     UnitOutputs& o = outputs_[static_cast<std::size_t>(u)];
@@ -130,6 +130,15 @@ bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
     o.vtx_valid = unit.vtx_valid();
     o.vtx = o.vtx_valid ? &unit.vtx() : nullptr;
   }
+}
+
+bool UnitSystem::admits_as_oldest(int u, const UnitOutputs& o) const {
+  return cfg_.reassembly != Reassembly::Ordered ||
+         (order_count_ > 0 && order_[order_head_].unit == u && order_[order_head_].id == o.vtx->id);
+}
+
+bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
+  read_outputs();
   const bool take = coordinate(tri_valid, tri, outputs_.data());
   // The units' clock edges (one idle input kept: a TriangleFx is too large to clear every cycle).
   idle_inputs_.tri_valid = false;
@@ -151,13 +160,7 @@ bool UnitSystem::tick(bool tri_valid, const TriangleFx& tri) {
 
 std::uint64_t UnitSystem::fast_forward(bool tri_valid, const TriangleFx& tri, std::uint64_t limit) {
   if (limit == 0) return 0;
-  for (int u = 0; u < units(); ++u) {
-    const Unit& unit = units_[static_cast<std::size_t>(u)];
-    UnitOutputs& o = outputs_[static_cast<std::size_t>(u)];
-    o.tri_ready = unit.tri_ready();
-    o.vtx_valid = unit.vtx_valid();
-    o.vtx = o.vtx_valid ? &unit.vtx() : nullptr;
-  }
+  read_outputs();
   // The distributor: a triangle it would take moves data; one refused waits through the stretch
   // (the units' tri_ready and the distributor's counts hold, so its choice does).
   const bool stalled = tri_valid;
@@ -169,9 +172,7 @@ std::uint64_t UnitSystem::fast_forward(bool tri_valid, const TriangleFx& tri, st
   std::uint64_t blocked = 0;
   for (int u = 0; u < units(); ++u) {
     if (!outputs_[static_cast<std::size_t>(u)].vtx_valid) continue;
-    const bool oldest = !ordered || (order_count_ > 0 && order_[order_head_].unit == u &&
-                                     order_[order_head_].id == outputs_[static_cast<std::size_t>(u)].vtx->id);
-    if (occupancy_ < (oldest ? r : r - 1)) return 0;
+    if (occupancy_ < (admits_as_oldest(u, outputs_[static_cast<std::size_t>(u)]) ? r : r - 1)) return 0;
     ++blocked;
   }
   // The ports see the same buffer every cycle: a vertex for them or none.
@@ -224,9 +225,7 @@ bool UnitSystem::coordinate(bool tri_valid, const TriangleFx& tri, const UnitOut
   for (int u = 0; u < units(); ++u) {
     admit_[static_cast<std::size_t>(u)] = 0;
     if (!outputs[u].vtx_valid) continue;
-    const bool oldest = !ordered || (order_count_ > 0 && order_[order_head_].unit == u &&
-                                     order_[order_head_].id == outputs[u].vtx->id);
-    if (occupancy_at_start + admitted < (oldest ? r : r - 1)) {
+    if (occupancy_at_start + admitted < (admits_as_oldest(u, outputs[u]) ? r : r - 1)) {
       admit_[static_cast<std::size_t>(u)] = 1;
       ++admitted;
     } else {

@@ -97,6 +97,10 @@ class UnitSystem {
   };
 
   int choose(const TriangleFx& tri, const UnitOutputs* outputs) const;  // the unit the distributor wants for `tri`
+  void read_outputs();  // outputs_ from the units' registered state
+  // Whether unit u's offered vertex (o.vtx) may take the buffer's last free slot: it belongs to
+  // the oldest patch in flight (unordered: any vertex may).
+  bool admits_as_oldest(int u, const UnitOutputs& o) const;
   void push(int unit, const VertexFx& v);
   VertexFx pop(int unit);
 
