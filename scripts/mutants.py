@@ -26,67 +26,119 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import rtl_builds  # noqa: E402
 import sweep  # noqa: E402
+import yosys_cost  # noqa: E402  (tess_pkg's defaults)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RTL_BUILDS = "n1;n3_lat3;n2_w28b20;n1_w20b18"
-# Test binaries built beside tessim for the stimuli that drive the unit below the host (raw factors,
-# searched alpha rounding ties).
-TEST_TARGETS = ["fsu_cosim_test", "silhouette_cosim_test"]
+# The campaign's builds: together they have every class of parameter value of the shipped builds
+# (rtl_builds.uncovered_classes; tests/scripts/mutant_classes_test.py), so that a bug visible only
+# at, say, three CPG copies is reachable.
+RTL_BUILDS = ["n1", "n3_lat3", "n2_w28b20", "n1_w20b18", "n1_r4", "n4_l3r24"]
+# Test binaries built beside tessim for the stimuli that drive the unit below the host (raw and
+# directed D3D11 factors, searched rounding ties).
+TEST_TARGETS = ["fsu_cosim_test", "silhouette_cosim_test", "ties_cosim_test"]
 WUSON = "/usr/share/assimp/models/PLY/Wuson.ply"
 
 
-def stimulus(tessim):
+def cosim(name, build, *args):
+    return {"name": name, "build": build, "args": list(args)}
+
+
+def test(name, binary, test_filter, builds):
+    return {"name": name, "test": binary, "filter": test_filter, "builds": builds}
+
+
+def stimulus():
     """The stimulus, in order; a mutant is run until the first failure. Together: every normal
-    mode, N = 1 and N = 3, INT latency 3, no / constant / random backpressure, degenerate triangles,
-    a real mesh, and saturation. The builds' flags come from `tessim schema` (rtl/builds.json)."""
-    N3, N1 = rtl_builds.cosim_args(tessim, "n3_lat3"), rtl_builds.cosim_args(tessim, "n1")
+    mode, N = 1 to 4, INT latency 3, no / constant / random backpressure, degenerate triangles, a
+    real mesh, saturation, and every class of parameter value of the shipped builds. Each `tessim
+    cosim` stimulus names its build; its flags come from `tessim schema` (rtl/builds.json)."""
+    N3, N1 = "n3_lat3", "n1"
     # The builds with the free parameters away from their defaults: FIFO depths 3 and 5, W = 28
     # and 20, B = 20 and 18.
-    W28, W20 = rtl_builds.cosim_args(tessim, "n2_w28b20"), rtl_builds.cosim_args(tessim, "n1_w20b18")
+    W28, W20 = "n2_w28b20", "n1_w20b18"
+    # Three CPG copies on one radix-16 lane (1-bit alpha), five on three whole-quotient lanes with N = 4
+    # (16-bit alpha): rings of copies that do not wrap by themselves.
+    R4, L3R24 = "n1_r4", "n4_l3r24"
+    alpha_builds = [N3, W28, W20, R4, L3R24]
     return [
-        ("random quadratic N=3 K=1", ["--random", "60", "--random-max-L", "6", "--gpe-cycles", "1"] + N3),
-        ("random linear N=3 stall", ["--random", "60", "--random-max-L", "6", "--normals", "linear", "--stall", "0.3",
-                                     "--gpe-cycles", "2"] + N3),
-        ("random reflect N=3 K=8", ["--random", "40", "--random-max-L", "5", "--normals", "reflect"] + N3),
-        ("saturating quadratic N=3", ["--random", "120", "--random-max-L", "3", "--random-extent", "30",
-                                      "--gpe-cycles", "1"] + N3),
-        ("saturating reflect N=1", ["--random", "120", "--random-max-L", "3", "--random-extent", "30", "--normals",
-                                    "reflect", "--gpe-cycles", "1"] + N1),
-        ("Wuson L=3 quadratic N=3", [WUSON, "-L", "3"] + N3),
+        cosim("random quadratic N=3 K=1", N3, "--random", "60", "--random-max-L", "6", "--gpe-cycles", "1"),
+        cosim("random linear N=3 stall", N3, "--random", "60", "--random-max-L", "6", "--normals", "linear",
+              "--stall", "0.3", "--gpe-cycles", "2"),
+        cosim("random reflect N=3 K=8", N3, "--random", "40", "--random-max-L", "5", "--normals", "reflect"),
+        cosim("saturating quadratic N=3", N3, "--random", "120", "--random-max-L", "3", "--random-extent", "30",
+              "--gpe-cycles", "1"),
+        cosim("saturating reflect N=1", N1, "--random", "120", "--random-max-L", "3", "--random-extent", "30",
+              "--normals", "reflect", "--gpe-cycles", "1"),
+        cosim("Wuson L=3 quadratic N=3", N3, WUSON, "-L", "3"),
         # n3_lat3 takes scalar tags: with cpg_tags 1 the random triangles carry random tags.
-        ("random tagged N=3 stall", ["--random", "40", "--random-max-L", "4", "--stall", "0.3",
-                                     "--gpe-cycles", "2"] + N3),
-        ("random tagged reflect N=3", ["--random", "30", "--random-max-L", "3", "--normals", "reflect",
-                                       "--gpe-cycles", "1"] + N3),
-        ("random linear N=1 K=1", ["--random", "40", "--random-max-L", "6", "--normals", "linear",
-                                   "--gpe-cycles", "1"] + N1),
+        cosim("random tagged N=3 stall", N3, "--random", "40", "--random-max-L", "4", "--stall", "0.3",
+              "--gpe-cycles", "2"),
+        cosim("random tagged reflect N=3", N3, "--random", "30", "--random-max-L", "3", "--normals", "reflect",
+              "--gpe-cycles", "1"),
+        cosim("random linear N=1 K=1", N1, "--random", "40", "--random-max-L", "6", "--normals", "linear",
+              "--gpe-cycles", "1"),
         # The D3D11 pattern: random factors, a partitioning drawn per triangle, and one partitioning on N = 1.
-        ("random D3D11 mixed N=3 stall", ["--random", "40", "--random-max-L", "10", "--partitioning", "mixed",
-                                          "--stall", "0.3", "--gpe-cycles", "2"] + N3),
-        ("random D3D11 fractional_odd N=1", ["--random", "40", "--random-max-L", "12", "--partitioning",
-                                             "fractional_odd", "--gpe-cycles", "1"] + N1),
+        cosim("random D3D11 mixed N=3 stall", N3, "--random", "40", "--random-max-L", "10", "--partitioning", "mixed",
+              "--stall", "0.3", "--gpe-cycles", "2"),
+        cosim("random D3D11 fractional_odd N=1", N1, "--random", "40", "--random-max-L", "12", "--partitioning",
+              "fractional_odd", "--gpe-cycles", "1"),
         # Resets at random cycles, aimed in turn at any cycle, the inner rings of a D3D11 patch (large
         # factors) and the CPG mid-triangle.
-        ("random resets D3D11 mixed N=3 stall", ["--random", "16", "--random-max-L", "40", "--partitioning", "mixed",
-                                                 "--random-resets", "9", "--stall", "0.2", "--gpe-cycles", "2"] + N3),
+        cosim("random resets D3D11 mixed N=3 stall", N3, "--random", "16", "--random-max-L", "40", "--partitioning",
+              "mixed", "--random-resets", "9", "--stall", "0.2", "--gpe-cycles", "2"),
         # The free parameters away from their defaults, fast and slow GE (K = 16 is slower than either TE:
         # the VTX FIFO fills), uniform and D3D11 patterns, saturation.
-        ("W=28 B=20 D3D11 mixed N=2 K=1", ["--random", "30", "--random-max-L", "10", "--partitioning", "mixed",
-                                           "--gpe-cycles", "1"] + W28),
-        ("W=20 B=18 random quadratic N=1 K=1", ["--random", "30", "--random-max-L", "6", "--gpe-cycles", "1"] + W20),
-        ("W=28 B=20 random linear N=2 slow GE", ["--random", "30", "--random-max-L", "6", "--normals", "linear",
-                                                 "--gpe-cycles", "16"] + W28),
-        ("W=20 B=18 random linear N=1 slow GE", ["--random", "30", "--random-max-L", "6", "--normals", "linear",
-                                                 "--gpe-cycles", "16"] + W20),
-        ("W=20 B=18 saturating reflect N=1", ["--random", "60", "--random-max-L", "3", "--random-extent", "30",
-                                              "--normals", "reflect", "--gpe-cycles", "1"] + W20),
+        cosim("W=28 B=20 D3D11 mixed N=2 K=1", W28, "--random", "30", "--random-max-L", "10", "--partitioning",
+              "mixed", "--gpe-cycles", "1"),
+        cosim("W=20 B=18 random quadratic N=1 K=1", W20, "--random", "30", "--random-max-L", "6", "--gpe-cycles", "1"),
+        cosim("W=28 B=20 random linear N=2 slow GE", W28, "--random", "30", "--random-max-L", "6", "--normals",
+              "linear", "--gpe-cycles", "16"),
+        cosim("W=20 B=18 random linear N=1 slow GE", W20, "--random", "30", "--random-max-L", "6", "--normals",
+              "linear", "--gpe-cycles", "16"),
+        cosim("W=20 B=18 saturating reflect N=1", W20, "--random", "60", "--random-max-L", "3", "--random-extent",
+              "30", "--normals", "reflect", "--gpe-cycles", "1"),
         # Raw D3D11 factors, every value the interface admits (tests/cosim/fsu_cosim_test.cpp, on n3_lat3).
-        ("FSU raw factors N=3 (fsu_cosim_test)", {"test": "fsu_cosim_test", "filter": "FsuRawFactors.*"}),
+        test("FSU raw factors N=3 (fsu_cosim_test)", "fsu_cosim_test", "FsuRawFactors.*", [N3]),
         # Streams searched for the rare triangles whose output the rounding of alpha w decides
         # (tests/cosim/silhouette_cosim_test.cpp), on every build of the copy that takes alpha.
-        ("alpha rounding ties (silhouette_cosim_test)", {"test": "silhouette_cosim_test",
-                                                         "filter": "CosimSilhouette.RoundingTies*"}),
+        test("alpha rounding ties (silhouette_cosim_test)", "silhouette_cosim_test",
+             "CosimSilhouette.RoundingTies*", alpha_builds),
+        # Small patches on the CPG-bound builds of several copies: the rings of 3 and 5 copies wrap
+        # many times; tags and alpha on both, D3D11 on the five-copy one.
+        cosim("random tagged quadratic N=1 Mc=3 K=1", R4, "--random", "80", "--random-max-L", "3", "--gpe-cycles", "1"),
+        cosim("random D3D11 mixed N=4 Mc=5 stall", L3R24, "--random", "60", "--random-max-L", "4", "--partitioning",
+              "mixed", "--stall", "0.2", "--gpe-cycles", "1"),
+        cosim("random reflect N=4 Mc=5 K=1", L3R24, "--random", "80", "--random-max-L", "2", "--normals", "reflect",
+              "--gpe-cycles", "1"),
+        # The D3D11 pattern's structural corners, enumerated (tests/cosim/fsu_cosim_test.cpp
+        # D3d11Corners): outer factors 1 with inner factors 2..8, factors next to every integer at the
+        # ring transitions, every partitioning, on every build of the copy.
+        test("D3D11 corners (fsu_cosim_test)", "fsu_cosim_test", "D3d11Corners.*", RTL_BUILDS),
+        # Exact ties of every rounding the unit makes, searched (tests/cosim/ties_cosim_test.cpp).
+        test("exact rounding ties (ties_cosim_test)", "ties_cosim_test", "ExactTies*", RTL_BUILDS),
     ]
+
+
+def reached_builds(stimuli):
+    """The builds the stimuli run on, in RTL_BUILDS order."""
+    names = set()
+    for s in stimuli:
+        names.update(s["builds"] if "test" in s else [s["build"]])
+    return [b for b in RTL_BUILDS if b in names] + sorted(names - set(RTL_BUILDS))
+
+
+def uncovered(stimuli):
+    """[(parameter, class, shipped build)] the stimuli do not reach (rtl_builds.uncovered_classes)."""
+    shipped = json.load(open(os.path.join(ROOT, "rtl", "builds.json")))["builds"]
+    by_name = {b["name"]: b for b in shipped}
+    reached = [by_name[n] for n in reached_builds(stimuli)]
+    return rtl_builds.uncovered_classes(shipped, reached, yosys_cost.package_defaults(os.path.join(ROOT, "rtl")))
+
+
+def command(stim, tessim):
+    if "test" in stim:  # a test binary of the same build
+        return [os.path.join(os.path.dirname(tessim), stim["test"]), "--gtest_filter=" + stim["filter"]]
+    return [tessim, "cosim"] + stim["args"] + rtl_builds.cosim_args(tessim, stim["build"])
 
 
 def run(cmd, **kw):
@@ -116,7 +168,7 @@ def copy_tree(dst):
 def build(src, bld, log):
     if not os.path.exists(os.path.join(bld, "CMakeCache.txt")):
         args = ["cmake", "-S", src, "-B", bld, "-DCMAKE_BUILD_TYPE=Release", "-DTESSIM_BUILD_TESTS=ON",
-                "-DTESSIM_BUILD_BENCH=OFF", "-DTESSIM_RTL_VARIANTS=" + RTL_BUILDS]
+                "-DTESSIM_BUILD_BENCH=OFF", "-DTESSIM_RTL_VARIANTS=" + ";".join(RTL_BUILDS)]
         if shutil.which("ccache"):
             args.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
         r = run(args)
@@ -169,11 +221,8 @@ def stimulate(tessim, stimuli, log, stop_at_first=True):
     """Runs the stimuli; returns [(index, output)] of the failures (only the first one when
     stop_at_first), empty when every stimulus passes."""
     failures = []
-    for i, (name, args) in enumerate(stimuli):
-        if isinstance(args, dict):  # a test binary of the same build
-            cmd = [os.path.join(os.path.dirname(tessim), args["test"]), "--gtest_filter=" + args["filter"]]
-        else:
-            cmd = [tessim, "cosim"] + args
+    for i, stim in enumerate(stimuli):
+        cmd = command(stim, tessim)
         r = run(cmd, timeout=1800)
         log.write("$ %s\n%s\n" % (" ".join(cmd), r.stdout))
         if r.returncode != 0:
@@ -194,6 +243,11 @@ def main():
                     help="run every stimulus on each mutant and list all that catch it (default: stop at the first)")
     args = ap.parse_args()
 
+    stimuli = stimulus()
+    missing = uncovered(stimuli)
+    if missing:
+        raise SystemExit("mutants: the stimulus reaches no build with " + "; ".join(
+            "%s %s (as %s has)" % m for m in missing))
     table = json.load(open(os.path.join(ROOT, "scripts", "mutants", "mutants.json")))["mutants"]
     if args.only:
         wanted = set(args.only.split(","))
@@ -211,13 +265,16 @@ def main():
     t0 = time.time()
     if not build(src, bld, log):
         raise SystemExit("mutants: the unmutated copy does not build (see %s)" % log.name)
+    stimuli = stimulus()
     try:
-        stimuli = stimulus(tessim)
+        for s in stimuli:
+            if "build" in s:
+                rtl_builds.cosim_args(tessim, s["build"])
     except sweep.SpecError as e:
         raise SystemExit("mutants: %s" % e)
     failed = stimulate(tessim, stimuli, log)
     if failed:
-        raise SystemExit("mutants: the unmutated copy fails '%s' (see %s)" % (stimuli[failed[0][0]][0], log.name))
+        raise SystemExit("mutants: the unmutated copy fails '%s' (see %s)" % (stimuli[failed[0][0]]["name"], log.name))
     print("unmutated: builds and passes all %d stimuli (%.0f s)" % (len(stimuli), time.time() - t0), flush=True)
 
     rows, problems = [], []
@@ -233,9 +290,9 @@ def main():
                     caught, stim, cycle = "SURVIVED", "-", None
                 else:
                     caught, cycle = classify(failures[0][1])
-                    stim = stimuli[failures[0][0]][0]
+                    stim = stimuli[failures[0][0]]["name"]
                     if args.all_stimuli:  # every stimulus that catches it, with its first divergent cycle
-                        stim = "; ".join("%s (%s)" % (stimuli[i][0], classify(out)[1]) for i, out in failures)
+                        stim = "; ".join("%s (%s)" % (stimuli[i]["name"], classify(out)[1]) for i, out in failures)
         finally:
             restore(src, m)
         seconds = time.time() - t

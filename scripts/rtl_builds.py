@@ -101,6 +101,50 @@ def parameter_text(params, defaults):
     return ", ".join(parts)
 
 
+# The classes of a parameter's values that reach different logic: a bug that shows only at one of
+# them (a ring pointer that wraps only at a power of two, a digit step that does not divide W) needs
+# a build of that class. Counts of rings and lanes, latencies, widths and switches are classes by
+# value; a FIFO depth by shape (a pointer that wraps by itself at a power of two, or not); the CPG's
+# digit bits by how they meet W. InjectBug selects a deliberate fault, not a configuration.
+def value_class(name, value, params):
+    if name in ("TriFifoDepth", "VtxFifoDepth"):
+        return "1" if value == 1 else "power of two" if value & (value - 1) == 0 else "not a power of two"
+    if name == "CpgDigitBits":
+        w = 1 + params["CoordIntBits"] + params["CoordFracBits"]
+        return ("1 (bit-serial)" if value == 1 else "W (a whole quotient a cycle)" if value >= w
+                else "divides W" if w % value == 0 else "does not divide W")
+    return str(value)
+
+
+def parameter_classes(parameters, defaults):
+    """{(parameter, class)} of one build: every tess_unit parameter, those the build does not set at
+    their tess_pkg defaults (`parameters`: builds.json's [name, value] pairs)."""
+    params = dict(defaults)
+    params.update(dict(parameters))
+    skip = {"InjectBug"}
+    return {(k, value_class(k, v, params)) for k, v in params.items()
+            if k not in skip and (k in dict(parameters) or k in CLASSED_DEFAULTS)}
+
+
+# tess_pkg defaults that configure the unit (the others are constants of the package).
+CLASSED_DEFAULTS = ("CoordIntBits", "CoordFracBits", "BaryBits", "AlphaBits", "IntBlocks", "IntLatency", "Contexts",
+                    "TriFifoDepth", "VtxFifoDepth", "CpBuffers", "CpgLanes", "CpgDigitBits", "CpgCopies",
+                    "CpgProductReg", "CpgTags")
+
+
+def uncovered_classes(shipped, reached, defaults):
+    """The classes of the builds `shipped` (builds.json entries) that no build in `reached` has:
+    [(parameter, class, first shipped build that has it)], empty when the campaign reaches them all."""
+    have = set().union(*(parameter_classes(b["parameters"], defaults) for b in reached)) if reached else set()
+    missing = {}
+    for b in shipped:
+        if dict(b["parameters"]).get("InjectBug"):
+            continue
+        for c in sorted(parameter_classes(b["parameters"], defaults) - have):
+            missing.setdefault(c, b["name"])
+    return [(k, v, name) for (k, v), name in sorted(missing.items())]
+
+
 def groups(builds):
     """Consecutive builds that differ in one parameter's value only (n1 … n4), as lists."""
     out = []

@@ -9,6 +9,8 @@
 // each factor slot.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -126,6 +128,108 @@ TEST(FsuRawFactorsContract, OddInnerOneBesideLargerOuterIsRefused) {
   in.tri = with_factors(stream[0], sim::TriPattern::fractional_odd, 2 * kFixed16One, kFixed16One, kFixed16One,
                         kFixed16One);
   EXPECT_THROW(unit.tick(in), std::invalid_argument);
+}
+
+// The pattern's structural corners, enumerated rather than drawn: every factor 1 on the outer edges
+// with inner factors 2..8 (the first step into an inner ring comes straight off an outer ring of
+// single segments), a factor just below, at and just above every integer 2..16 where a ring
+// appears or a transition point splits, each alone in one slot beside 1s and all four together,
+// in each partitioning the unit takes (pow2 reaches it as integer). Winding is the host's (the
+// unit places points; the index list's order is made from them), so the unit's corners do not
+// depend on it.
+std::vector<std::array<Fixed16, 4>> d3d11_corners(sim::TriPattern p) {
+  const Fixed16 one = kFixed16One, eps = p == sim::TriPattern::integer ? 0 : 1;
+  const Fixed16 lo = p == sim::TriPattern::fractional_even ? 2 * one : one;  // the smallest factor
+  const Fixed16 hi = p == sim::TriPattern::fractional_odd ? 63 * one : 64 * one;
+  auto near = [&](int k) {  // k - 2^-16, k, k + 2^-16 within the partitioning's range
+    std::vector<Fixed16> v;
+    for (const Fixed16 f : {k * one - eps, k * one, k * one + eps})
+      if (f >= lo && f <= hi && (v.empty() || v.back() != f)) v.push_back(f);
+    return v;
+  };
+  std::vector<std::array<Fixed16, 4>> out;
+  // Outer factors at the bottom (1, and 1 + 2^-16 where fractional), inner 2..8 and next to them.
+  for (const Fixed16 outer : {lo, lo + eps})
+    for (int k = 2; k <= 8; ++k)
+      for (const Fixed16 inner : near(k)) out.push_back({outer, outer, outer, inner});
+  // Next to every integer 2..16: alone in each slot beside the smallest factor, and in all four.
+  for (int k = 2; k <= 16; ++k)
+    for (const Fixed16 f : near(k)) {
+      for (int slot = 0; slot < 4; ++slot) {
+        // (fractional_odd refuses inner 1 beside a larger outer factor: its inner is 1 + 2^-16 there.)
+        const Fixed16 inner = p == sim::TriPattern::fractional_odd && slot < 3 ? lo + eps : lo;
+        std::array<Fixed16, 4> fs{lo, lo, lo, inner};
+        fs[static_cast<std::size_t>(slot)] = f;
+        out.push_back(fs);
+      }
+      out.push_back({f, f, f, f});
+    }
+  // Drop what the interface refuses (fractional_odd: inner 1 beside larger outer factors) and
+  // repeats (integer partitioning: no neighbours).
+  std::vector<std::array<Fixed16, 4>> admitted;
+  for (const auto& fs : out) {
+    sim::TriangleFx t;
+    t.pattern = p;
+    t.factors = fs;
+    if (sim::tri_pattern_problem(t).empty() && std::find(admitted.begin(), admitted.end(), fs) == admitted.end())
+      admitted.push_back(fs);
+  }
+  return admitted;
+}
+
+TEST(D3d11Corners, EveryBuildAgreesOnTheEnumeratedCorners) {
+  std::size_t builds = 0;
+  for (const std::string& name : rtl::rtl_variants()) {
+    if (rtl::make_rtl_unit(name)->inject_bug() != 0) continue;  // the checker's own faults
+    ++builds;
+    CosimOptions o;
+    o.variant = name;
+    static_cast<sim::HardwareConfig&>(o.unit) = rtl::make_rtl_unit(name)->config();
+    o.unit.normals = NormalMode::Linear;  // the shortest CPG pass: the patterns are the subject
+    o.unit.gpe_cycles = 1;
+    o.unit.gpe_stall_prob = 0.1;
+    o.seed = o.unit.seed = 11;
+    const std::vector<sim::TriangleFx> shapes = random_triangles(16, o.seed, o.unit.format, 1, 0.0);
+    for (const sim::TriPattern p : {sim::TriPattern::integer, sim::TriPattern::fractional_odd,
+                                    sim::TriPattern::fractional_even}) {
+      const std::vector<std::array<Fixed16, 4>> corners = d3d11_corners(p);
+      std::vector<sim::TriangleFx> stream;
+      std::uint64_t vertices = 0;
+      for (const auto& fs : corners) {
+        sim::TriangleFx t = with_factors(shapes[stream.size() % shapes.size()], p, fs[0], fs[1], fs[2], fs[3]);
+        t.id = static_cast<std::uint32_t>(stream.size());
+        vertices += static_cast<std::uint64_t>(sim::patch_vertex_count(t));
+        stream.push_back(t);
+      }
+      // integer: 7 + 15 * 5, less the repeats; fractional: 2 * 7 * 3 + 15 * 3 * 5 less the neighbours
+      // outside the range (fractional_even: 2 - 2^-16) and the repeats.
+      RecordProperty(std::string(partitioning_name(sim::tri_partitioning(p))) + "_patches", static_cast<int>(stream.size()));
+      EXPECT_GE(stream.size(), p == sim::TriPattern::integer ? 75u : 230u);  // 82, 246, 235
+      const CosimReport r = run_cosim(stream, o);
+      SCOPED_TRACE(name + " " + std::string(partitioning_name(sim::tri_partitioning(p))));
+      ASSERT_TRUE(r.passed) << format_report(r, o);
+      EXPECT_EQ(r.vertices, vertices);
+    }
+  }
+  EXPECT_GE(builds, 1u);
+}
+
+// The enumeration holds the corners it names: inner 2..8 beside outer 1 in each partitioning that
+// admits outer 1, and the neighbours of the integers where the partitioning has them.
+TEST(D3d11Corners, TheEnumerationHasTheNamedCorners) {
+  const Fixed16 one = kFixed16One;
+  for (const sim::TriPattern p : {sim::TriPattern::integer, sim::TriPattern::fractional_odd}) {
+    const auto c = d3d11_corners(p);
+    for (int k = 2; k <= 8; ++k)
+      EXPECT_NE(std::find(c.begin(), c.end(), std::array<Fixed16, 4>{one, one, one, k * one}), c.end()) << k;
+  }
+  const auto odd = d3d11_corners(sim::TriPattern::fractional_odd);
+  for (int k = 2; k <= 16; ++k)
+    for (const Fixed16 f : {k * one - 1, k * one + 1})
+      EXPECT_NE(std::find(odd.begin(), odd.end(), std::array<Fixed16, 4>{f, f, f, f}), odd.end()) << f;
+  const auto even = d3d11_corners(sim::TriPattern::fractional_even);
+  EXPECT_NE(std::find(even.begin(), even.end(), std::array<Fixed16, 4>{2 * one, 2 * one, 2 * one, 3 * one}),
+            even.end());
 }
 
 INSTANTIATE_TEST_SUITE_P(Partitionings, FsuRawFactors,
