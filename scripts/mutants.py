@@ -168,7 +168,9 @@ def copy_tree(dst):
 def build(src, bld, log):
     if not os.path.exists(os.path.join(bld, "CMakeCache.txt")):
         args = ["cmake", "-S", src, "-B", bld, "-DCMAKE_BUILD_TYPE=Release", "-DTESSIM_BUILD_TESTS=ON",
-                "-DTESSIM_BUILD_BENCH=OFF", "-DTESSIM_RTL_VARIANTS=" + ";".join(RTL_BUILDS)]
+                "-DTESSIM_BUILD_BENCH=OFF", "-DTESSIM_RTL_VARIANTS=" + ";".join(RTL_BUILDS),
+                # Not driven by the stimuli: the system of units' models would be rebuilt per mutant.
+                "-DTESSIM_BUILD_SYSTEM_RTL=OFF", "-DTESSIM_BUILD_PYTHON=OFF"]
         if shutil.which("ccache"):
             args.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
         r = run(args)
