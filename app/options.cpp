@@ -225,9 +225,11 @@ Partitioning parse_partitioning_option(const char* /*command*/, const std::strin
 void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& o, const char* /*command*/) {
   cmd.add_option("--adaptive", o.adaptive,
                  "'screen': factors per edge from the edge's projected length; 'silhouette': that scaled by the "
-                 "edge's silhouetteness, with silhouette blending from the camera's eye; 'nyquist': enough segments "
+                 "edge's silhouetteness, with silhouette blending from the camera's eye; 'contour': the silhouette rule with "
+                 "every edge of a patch the view contour can cross taken as silhouette; 'nyquist': enough segments "
                  "to sample the --displace wavelength along each edge --samples-per-wavelength times (no camera); "
-                 "'screen+nyquist', 'silhouette+nyquist': the larger factor of both (docs/patterns.md)");
+                 "'screen+nyquist', 'silhouette+nyquist', 'contour+nyquist': the larger factor of both "
+                 "(docs/patterns.md)");
   o.samples_per_wavelength_option =
       cmd.add_option("--samples-per-wavelength", o.samples_per_wavelength,
                      "with --adaptive ...nyquist: points per shortest wavelength of the displacement along an edge (S >= 1)")
@@ -242,7 +244,7 @@ void add_adaptive_options(CLI::App& cmd, AdaptiveOptions& o, const char* /*comma
           ->capture_default_str();
   o.outline_tolerance_option =
       cmd.add_option("--outline-tolerance", o.outline_tolerance,
-                     "with --adaptive silhouette: largest distance in pixels between an edge's curve and its segments")
+                     "with --adaptive silhouette or contour: largest distance in pixels between an edge's curve and its segments")
           ->transform(number_check<double>(kCommandLine, "--outline-tolerance", "positive numbers"))
           ->capture_default_str();
 }
@@ -373,16 +375,20 @@ void AdaptiveOptions::check_given_alone() const {
   if (pixels_per_segment_option && pixels_per_segment_option->count() > 0)
     throw InputError(kCommandLine, "--pixels-per-segment", "needs --adaptive screen");
   if (outline_tolerance_option && outline_tolerance_option->count() > 0)
-    throw InputError(kCommandLine, "--outline-tolerance", "needs --adaptive silhouette");
+    throw InputError(kCommandLine, "--outline-tolerance", "needs --adaptive silhouette or contour");
   if (samples_per_wavelength_option && samples_per_wavelength_option->count() > 0)
-    throw InputError(kCommandLine, "--samples-per-wavelength", "needs --adaptive nyquist, screen+nyquist or silhouette+nyquist");
+    throw InputError(kCommandLine, "--samples-per-wavelength",
+                     "needs --adaptive nyquist, screen+nyquist, silhouette+nyquist or contour+nyquist");
 }
 
 void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
-  static const std::vector<std::string> kRules{"screen", "silhouette", "nyquist", "screen+nyquist", "silhouette+nyquist"};
+  static const std::vector<std::string> kRules{"screen",         "silhouette",         "contour",        "nyquist",
+                                               "screen+nyquist", "silhouette+nyquist", "contour+nyquist"};
   if (std::find(kRules.begin(), kRules.end(), adaptive) == kRules.end())
     throw InputError(kCommandLine, "--adaptive",
-                     "'" + adaptive + "' is not screen, silhouette, nyquist, screen+nyquist or silhouette+nyquist");
+                     "'" + adaptive +
+                         "' is not screen, silhouette, contour, nyquist, screen+nyquist, silhouette+nyquist or "
+                         "contour+nyquist");
   s.kind = PatternKind::D3D11;
   s.source = FactorSource::Adaptive;
   s.samples_per_wavelength = samples_per_wavelength;
@@ -400,21 +406,25 @@ void AdaptiveOptions::apply(TessSettings& s, const char* /*command*/) const {
     if (outline_tolerance_option && outline_tolerance_option->count() > 0)
       throw InputError(kCommandLine, "--outline-tolerance",
                        "is the silhouette rule's; --adaptive nyquist alone takes --samples-per-wavelength only (the "
-                       "larger of both: silhouette+nyquist)");
+                       "larger of both: silhouette+nyquist, contour+nyquist)");
     return;
   }
   s.with_nyquist = adaptive.ends_with("+nyquist");
   if (!s.with_nyquist && nyquist_given)
-    throw InputError(kCommandLine, "--samples-per-wavelength", "needs --adaptive nyquist, screen+nyquist or silhouette+nyquist");
+    throw InputError(kCommandLine, "--samples-per-wavelength",
+                     "needs --adaptive nyquist, screen+nyquist, silhouette+nyquist or contour+nyquist");
   const std::string base = adaptive.substr(0, adaptive.find('+'));
   if (camera.empty())
     throw InputError(kCommandLine, "--camera", "--adaptive " + adaptive + " needs --camera eye=x,y,z");
-  s.rule = base == "silhouette" ? AdaptiveRule::Silhouette : AdaptiveRule::Screen;
+  s.rule = base == "silhouette" ? AdaptiveRule::Silhouette
+           : base == "contour"  ? AdaptiveRule::Contour
+                                : AdaptiveRule::Screen;
   // Each rule has its own knob: the other one's is refused rather than silently ignored.
-  if (s.rule == AdaptiveRule::Silhouette && pixels_per_segment_option && pixels_per_segment_option->count() > 0)
-    throw InputError(kCommandLine, "--pixels-per-segment", "is the screen rule's; --adaptive silhouette takes --outline-tolerance");
+  if (s.by_outline() && pixels_per_segment_option && pixels_per_segment_option->count() > 0)
+    throw InputError(kCommandLine, "--pixels-per-segment",
+                     "is the screen rule's; --adaptive " + base + " takes --outline-tolerance");
   if (s.rule == AdaptiveRule::Screen && outline_tolerance_option && outline_tolerance_option->count() > 0)
-    throw InputError(kCommandLine, "--outline-tolerance", "needs --adaptive silhouette");
+    throw InputError(kCommandLine, "--outline-tolerance", "needs --adaptive silhouette or contour");
   // key=value items; a value's own commas belong to it until the next "key=".
   std::vector<std::pair<std::string, std::string>> items;
   std::size_t start = 0;

@@ -35,8 +35,11 @@ std::string TessSettings::describe() const {
     s += " nyquist-adaptive (" + number(samples_per_wavelength) + " samples per wavelength)";
   } else {
     s = partitioning_name(partitioning);
-    const bool by_outline = rule == AdaptiveRule::Silhouette;
-    s += std::string(by_outline ? " silhouette-adaptive (eye " : " adaptive (eye ") + format_vec(camera.eye) +
+    const bool by_outline = this->by_outline();
+    s += std::string(rule == AdaptiveRule::Contour ? " contour-adaptive (eye "
+                     : by_outline                  ? " silhouette-adaptive (eye "
+                                                   : " adaptive (eye ") +
+         format_vec(camera.eye) +
          ", fov " + number(camera.fov_deg) + " deg, " + std::to_string(camera.width) + "x" +
          std::to_string(camera.height) + ", " +
          (by_outline ? "outline tolerance " + number(outline_tolerance) + " pixels)"
@@ -147,7 +150,9 @@ void bind_silhouette(TessSettings& s, const Mesh& mesh) {
   // (and the patches stay plain PN); with it, the rule and the blend share its α.
   const bool own_eye = s.silhouette.enabled && !s.silhouette.eye_from_camera;
   const glm::dvec3 eye = own_eye ? s.silhouette.eye : s.camera.eye;
-  s.silhouette_field = std::make_shared<const MeshSilhouette>(mesh, eye, s.silhouette.beta);
+  auto field = std::make_shared<MeshSilhouette>(mesh, eye, s.silhouette.beta);
+  if (adaptive && s.rule == AdaptiveRule::Contour) field->mark_contour_patches(mesh, s.silhouette.blends());
+  s.silhouette_field = std::move(field);
 }
 
 PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::size_t t) {
@@ -163,12 +168,16 @@ PatchFactors patch_factors(const TessSettings& settings, const Mesh& mesh, std::
   PatchFactors f;
   if (settings.rule == AdaptiveRule::Nyquist) {
     f.outer = {1.0f, 1.0f, 1.0f};
-  } else if (settings.rule == AdaptiveRule::Silhouette) {
+  } else if (settings.by_outline()) {
     if (!settings.silhouette_field) throw std::logic_error("patch_factors: the silhouette rule needs bind_silhouette()");
-    const std::array<double, 3>& alpha = settings.silhouette_field->alpha(t);  // edges 01, 12, 20
-    const std::array<double, 3>& deviation = settings.silhouette_field->deviation(t);
+    const MeshSilhouette& field = *settings.silhouette_field;
+    const std::array<double, 3>& alpha = field.alpha(t);  // edges 01, 12, 20
+    const std::array<double, 3>& deviation = field.deviation(t);
+    const bool contour = settings.rule == AdaptiveRule::Contour;
     auto edge = [&](int e, const glm::dvec3& p, const glm::dvec3& q) {
-      return silhouette_edge_factor(settings.camera, settings.outline_tolerance, alpha[e], deviation[e], p, q);
+      const double a = contour && field.contour_edge(t, e) ? 1.0 : alpha[static_cast<std::size_t>(e)];
+      return silhouette_edge_factor(settings.camera, settings.outline_tolerance, a, deviation[static_cast<std::size_t>(e)],
+                                    p, q);
     };
     f.outer = {edge(2, p0, p2), edge(0, p0, p1), edge(1, p1, p2)};
   } else {

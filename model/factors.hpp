@@ -28,9 +28,10 @@ namespace tessim {
 enum class PatternKind { Uniform, D3D11 };
 enum class FactorSource { Fixed, Adaptive };
 // The adaptive rules (docs/patterns.md, Factors of a mesh): the edge's projected length alone,
-// that length scaled by the edge's silhouetteness α (model/silhouette.hpp), or enough segments to
+// that length scaled by the edge's silhouetteness α (model/silhouette.hpp), that with every edge
+// of a patch the view contour can cross taken as fully silhouette (Contour), or enough segments to
 // sample the displacement's shortest wavelength along the edge (Nyquist, no camera).
-enum class AdaptiveRule { Screen, Silhouette, Nyquist };
+enum class AdaptiveRule { Screen, Silhouette, Contour, Nyquist };
 
 // A perspective camera for adaptive factors: eye, the point looked at, vertical field of view
 // and the viewport in pixels.
@@ -66,8 +67,10 @@ struct TessSettings {
 
   bool uses_silhouette() const {
     return silhouette.enabled || (kind == PatternKind::D3D11 && source == FactorSource::Adaptive &&
-                                  rule == AdaptiveRule::Silhouette);
+                                  by_outline());
   }
+  // The silhouette and contour rules: factors from the outline tolerance and the edges' α.
+  bool by_outline() const { return rule == AdaptiveRule::Silhouette || rule == AdaptiveRule::Contour; }
 
   // One line for summaries: "L=4" (the uniform pattern), "integer outer 3,4,5 inner 4", "fractional_odd
   // adaptive (camera ...)".
@@ -86,6 +89,10 @@ struct PatchFactors {
 float adaptive_edge_factor(const ScreenCamera& camera, double pixels_per_segment, const glm::dvec3& a,
                            const glm::dvec3& b);
 
+// Contour rule (docs/patterns.md §7): the silhouette rule, with α taken as 1 on every edge of a
+// patch the view contour can cross (MeshSilhouette::contour_edge): such a patch and its
+// neighbours across those edges get at least the silhouette rule's factors. The mark is one value
+// per edge, so the factors stay crack-free.
 // Silhouette rule (docs/patterns.md §7): as many segments as keep the blended edge curve within
 // `outline_tolerance` pixels of its chords on screen. The curve's largest control-point offset
 // from the flat edge across the view is α·deviation (MeshSilhouette::deviation); a cubic with

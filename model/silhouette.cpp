@@ -228,4 +228,81 @@ PnPatch make_silhouette_patch(const PnInput& in, const PatchSilhouette& s, Norma
   return make_patch_from_tangents(in.p, s.normals, tangent, mode);
 }
 
+PnPatch mesh_patch(const Mesh& mesh, std::size_t t, NormalMode mode, const MeshSilhouette* silhouette) {
+  const glm::uvec3& tri = mesh.triangles[t];
+  PnInput input;
+  std::array<VertexTags, 3> tags{};
+  for (int c = 0; c < 3; ++c) {
+    input.p[c] = mesh.positions[tri[c]];
+    input.n[c] = mesh.normals[tri[c]];
+    if (mesh.has_tags()) tags[c] = mesh.tags[tri[c]];
+  }
+  // A tagged mesh takes the scalar-tagged control points (plain PN where tags are neutral).
+  return silhouette       ? make_silhouette_patch(input, silhouette->patch(mesh, t), mode)
+         : mesh.has_tags() ? make_stpn_patch(input, tags, mode)
+                           : make_patch(input, mode);
+}
+
+namespace {
+
+// Multinomial d! / (i! j! k!) of a triangular Bernstein index, d <= 7.
+double multinomial(int i, int j, int k) {
+  static constexpr double kFactorial[8] = {1, 1, 2, 6, 24, 120, 720, 5040};
+  return kFactorial[i + j + k] / (kFactorial[i] * kFactorial[j] * kFactorial[k]);
+}
+
+// The product of two polynomials in triangular Bernstein form of degrees m and n (nets in
+// net_index order), coefficient by coefficient through `op` (a bilinear product of the
+// coefficients): c_g = sum over a + b = g of C(m; a) C(n; b) / C(m + n; g) op(x_a, y_b).
+template <typename X, typename Y, typename Op>
+auto bernstein_product(const std::vector<X>& x, int m, const std::vector<Y>& y, int n, Op op) {
+  using Z = decltype(op(x[0], y[0]));
+  const int d = m + n;
+  std::vector<Z> z(static_cast<std::size_t>((d + 1) * (d + 2) / 2), Z{});
+  for (int ka = 0; ka <= m; ++ka)
+    for (int ja = 0; ja + ka <= m; ++ja)
+      for (int kb = 0; kb <= n; ++kb)
+        for (int jb = 0; jb + kb <= n; ++jb) {
+          const int j = ja + jb, k = ka + kb;
+          const double weight = multinomial(m - ja - ka, ja, ka) * multinomial(n - jb - kb, jb, kb) /
+                                multinomial(d - j - k, j, k);
+          z[static_cast<std::size_t>(net_index(j, k, d))] +=
+              weight * op(x[static_cast<std::size_t>(net_index(ja, ka, m))], y[static_cast<std::size_t>(net_index(jb, kb, n))]);
+        }
+  return z;
+}
+
+}  // namespace
+
+bool contour_can_cross(const PnPatch& patch, const glm::dvec3& eye) {
+  // The partial derivatives along u and v (w = 1 - u - v falls): quadratic nets 3 (b_{+u} - b) and
+  // 3 (b_{+v} - b).
+  std::vector<glm::dvec3> du(6), dv(6), rel(10);
+  for (int k = 0; k <= 2; ++k)
+    for (int j = 0; j + k <= 2; ++j) {
+      const glm::dvec3& b = patch.b[static_cast<std::size_t>(net_index(j, k, 3))];
+      du[static_cast<std::size_t>(net_index(j, k, 2))] = 3.0 * (patch.b[static_cast<std::size_t>(net_index(j + 1, k, 3))] - b);
+      dv[static_cast<std::size_t>(net_index(j, k, 2))] = 3.0 * (patch.b[static_cast<std::size_t>(net_index(j, k + 1, 3))] - b);
+    }
+  for (std::size_t i = 0; i < 10; ++i) rel[i] = patch.b[i] - eye;  // the Bernstein basis sums to 1
+  const std::vector<glm::dvec3> normal =
+      bernstein_product(du, 2, dv, 2, [](const glm::dvec3& a, const glm::dvec3& b) { return glm::cross(a, b); });
+  const std::vector<double> g =
+      bernstein_product(rel, 3, normal, 4, [](const glm::dvec3& a, const glm::dvec3& b) { return glm::dot(a, b); });
+  const bool all_positive = std::all_of(g.begin(), g.end(), [](double c) { return c > 0.0; });
+  const bool all_negative = std::all_of(g.begin(), g.end(), [](double c) { return c < 0.0; });
+  return !(all_positive || all_negative);
+}
+
+void MeshSilhouette::mark_contour_patches(const Mesh& mesh, bool blended) {
+  contour_.assign(mesh.triangles.size(), 0);
+  contour_count_ = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    // The geometry is the same in every normal mode.
+    const PnPatch patch = mesh_patch(mesh, t, NormalMode::Quadratic, blended ? this : nullptr);
+    contour_[t] = contour_can_cross(patch, eye_) ? 1 : 0;
+    contour_count_ += contour_[t];
+  }
+}
+
 }  // namespace tessim

@@ -84,6 +84,18 @@ class MeshSilhouette {
   // Everything patch t needs (the mesh must be the one it was built from).
   PatchSilhouette patch(const Mesh& mesh, std::size_t t) const;
   const SilhouetteCounts& counts() const { return counts_; }
+  // The contour rule's per-patch test (contour_can_cross) on every patch of the mesh, on the
+  // patches as they are tessellated (blended with this α when `blended`); before it, no patch is
+  // marked. Edge e of triangle t is a contour edge when either of its faces is marked: one value
+  // per edge, so the factors it raises stay crack-free.
+  void mark_contour_patches(const Mesh& mesh, bool blended);
+  bool contour_patch(std::size_t t) const { return !contour_.empty() && contour_[t] != 0; }
+  bool contour_edge(std::size_t t, int e) const {
+    if (contour_patch(t)) return true;
+    const std::uint32_t other = across_[t][static_cast<std::size_t>(e)];
+    return other != kNoFace && contour_patch(other);
+  }
+  std::size_t contour_patches() const { return contour_count_; }
   const glm::dvec3& eye() const { return eye_; }
   double beta() const { return beta_; }
 
@@ -97,6 +109,8 @@ class MeshSilhouette {
   // The other face of each edge when the edge has exactly two faces, else kNoFace.
   std::vector<std::array<std::uint32_t, 3>> across_;
   SilhouetteCounts counts_;
+  std::vector<std::uint8_t> contour_;  // per triangle: the contour can cross its patch
+  std::size_t contour_count_ = 0;
 };
 
 // The normal triangle t shades corner c with: the vertex normal, or for a tagged vertex its
@@ -109,6 +123,17 @@ glm::dvec3 corner_shading_normal(const Mesh& mesh, std::size_t t, int c);
 // b111 and the normal field as in plain PN, with the face's shading normals. All α = 1 on an
 // untagged mesh gives make_patch()'s patch bit for bit; all α = 0 the flat triangle.
 PnPatch make_silhouette_patch(const PnInput& in, const PatchSilhouette& silhouette, NormalMode mode);
+
+// The float control points of the mesh's triangle t as the reference evaluates them: blended by
+// `silhouette` when given, scalar-tagged where the mesh has tags, else plain PN.
+PnPatch mesh_patch(const Mesh& mesh, std::size_t t, NormalMode mode, const MeshSilhouette* silhouette = nullptr);
+
+// Whether the view contour of a patch's surface can cross it: where the surface turns from facing
+// `eye` to facing away, g = (P - eye) . (P_u x P_v) changes sign. g is a polynomial of degree 7 on
+// the domain (cubic P, quartic P_u x P_v); its 36 Bernstein coefficients bound it, so a patch whose
+// coefficients all share one strict sign has no contour point. Conservative: true may also mean
+// a patch the contour only passes near; a degenerate patch (g = 0) counts as crossed.
+bool contour_can_cross(const PnPatch& patch, const glm::dvec3& eye);
 
 // Checks settings before any mesh is read: InputError(source, "--silhouette", reason).
 void validate(const SilhouetteSettings& settings, const std::string& source);

@@ -126,21 +126,6 @@ TessellationSummary tessellate_mesh(const Mesh& mesh, int L, NormalMode mode, co
   return tessellate_mesh(mesh, settings, mode, sink);
 }
 
-PnPatch mesh_patch(const Mesh& mesh, std::size_t t, NormalMode mode, const MeshSilhouette* silhouette) {
-  const glm::uvec3& tri = mesh.triangles[t];
-  PnInput input;
-  std::array<VertexTags, 3> tags{};
-  for (int c = 0; c < 3; ++c) {
-    input.p[c] = mesh.positions[tri[c]];
-    input.n[c] = mesh.normals[tri[c]];
-    if (mesh.has_tags()) tags[c] = mesh.tags[tri[c]];
-  }
-  // A tagged mesh takes the scalar-tagged control points (plain PN where tags are neutral).
-  return silhouette       ? make_silhouette_patch(input, silhouette->patch(mesh, t), mode)
-         : mesh.has_tags() ? make_stpn_patch(input, tags, mode)
-                           : make_patch(input, mode);
-}
-
 namespace {
 
 // The patch of input triangle t: control points (scalar-tagged where the mesh has tags), then

@@ -72,9 +72,6 @@ using PatchSink = std::function<void(const PatchView&)>;
 // patch that is not culled to the sink in input order. A mesh with tags is tessellated as
 // scalar-tagged PN triangles (make_stpn_patch, docs/stpn.md), one without as plain PN. Throws InputError for invalid settings
 // or mesh, before the first patch.
-// The float control points of the mesh's triangle t as the reference evaluates them: blended by
-// `silhouette` when given, scalar-tagged where the mesh has tags, else plain PN.
-PnPatch mesh_patch(const Mesh& mesh, std::size_t t, NormalMode mode, const MeshSilhouette* silhouette = nullptr);
 
 TessellationSummary tessellate_mesh(const Mesh& mesh, const TessSettings& settings, NormalMode mode,
                                     const PatchSink& sink);

@@ -4,7 +4,8 @@
 On a camera path of views around each mesh, renders (tessim render, one sample per pixel, no
 caption) the truth, uniform PN at L = 32, then uniform PN at several L and the silhouette rule
 (--adaptive silhouette) at several outline tolerances, with plain PN patches (β = 0.25 and a
-narrower band, β = 0.08) and with the silhouette blend (β = 0.25 and β = 1). The
+narrower band, β = 0.08) and with the silhouette blend (β = 0.25 and β = 1), and the contour rule
+(--adaptive contour) with plain PN patches and with the blend (β = 0.25). The
 outline of a picture is the boundary of the surface's coverage: surface pixels with a
 4-neighbour of background colour. The outline error of a picture is measured against the
 truth's outline in both directions (every outline pixel's distance to the nearest outline pixel
@@ -46,13 +47,16 @@ TRUTH_L = 32
 UNIFORM_L = [1, 2, 3, 4, 6, 8, 12, 16]
 REFERENCE_L = 8
 OUTLINE_TOLERANCE = [2, 1, 0.5, 0.25, 0.125, 0.0625, 0.03125]
-# The silhouette rule's variants: the --silhouette text each adds (None: none, β = 0.25, the
-# patches plain PN), and how the plot draws it.
+# The outline rules' variants: the --silhouette text each adds (None: none, β = 0.25, the
+# patches plain PN), how the plot draws it, and the --adaptive rule: the per-edge silhouette rule,
+# or the contour rule (every edge of a patch the view contour can cross taken as silhouette).
 VARIANTS = {
-    "rule": (None, "s-", "silhouette rule, beta 0.25, PN patches"),
-    "rule-narrow": ("camera,beta=0.08,blend=off", "D-", "silhouette rule, beta 0.08, PN patches"),
-    "blend": ("camera", "^-", "silhouette rule + blend, beta 0.25"),
-    "blend-wide": ("camera,beta=1", "v-", "silhouette rule + blend, beta 1"),
+    "rule": (None, "s-", "silhouette rule, beta 0.25, PN patches", "silhouette"),
+    "rule-narrow": ("camera,beta=0.08,blend=off", "D-", "silhouette rule, beta 0.08, PN patches", "silhouette"),
+    "blend": ("camera", "^-", "silhouette rule + blend, beta 0.25", "silhouette"),
+    "blend-wide": ("camera,beta=1", "v-", "silhouette rule + blend, beta 1", "silhouette"),
+    "contour": (None, "P-", "contour rule, beta 0.25, PN patches", "contour"),
+    "contour-blend": ("camera", "X-", "contour rule + blend, beta 0.25", "contour"),
 }
 TARGET_SHARE = 0.30
 BACKGROUND = (0.94, 0.94, 0.93)  # render::RenderOptions::background, linear; compared after sRGB below
@@ -89,7 +93,7 @@ def render(tessim, mesh, camera, size, pattern, png):
     if pattern[0] == "uniform":
         args += ["-L", str(pattern[1]), "--view-camera", cam]
     else:
-        args += ["--adaptive", "silhouette", "--camera", cam, "--viewport", size, "--outline-tolerance",
+        args += ["--adaptive", VARIANTS[pattern[0]][3], "--camera", cam, "--viewport", size, "--outline-tolerance",
                  str(pattern[1])]
         silhouette = VARIANTS[pattern[0]][0]
         if silhouette:

@@ -76,7 +76,7 @@ TEST(FactorsCli, BadPatternOptionsAreInputErrors) {
       {{"--partitioning", "odd"}, "is not one of integer, pow2, fractional_odd, fractional_even"},
       {{"--camera", "eye=1,2,3"}, "--camera: needs --adaptive screen"},
       {{"--adaptive", "screen"}, "needs --camera eye=x,y,z"},
-      {{"--adaptive", "world", "--camera", "eye=1,2,3"}, "'world' is not screen, silhouette, nyquist"},
+      {{"--adaptive", "world", "--camera", "eye=1,2,3"}, "'world' is not screen, silhouette, contour, nyquist"},
       {{"--adaptive", "screen", "--camera", "eye=0,0,0"}, "the eye is the target"},
       {{"--adaptive", "screen", "--camera", "eye=1,2"}, "needs three coordinates"},
       {{"--adaptive", "screen", "--camera", "eye=1,2,3,fov=180"}, "outside (0, 180)"},

@@ -95,6 +95,13 @@ TEST(SilhouetteCli, AdaptiveSilhouetteSpendsFewerTrianglesThanTheScreenRule) {
   const auto silhouette = triangles("silhouette", "--outline-tolerance", "0.5");
   EXPECT_LT(silhouette, screen / 2);
   EXPECT_GT(silhouette, load_mesh(kWuson).triangle_count());
+  // The contour rule refines the patches the view contour can cross as well: more than the
+  // per-edge rule at the same tolerance.
+  const auto contour = triangles("contour", "--outline-tolerance", "0.5");
+  EXPECT_GT(contour, silhouette);
+  RecordProperty("screen", static_cast<int>(screen));
+  RecordProperty("silhouette", static_cast<int>(silhouette));
+  RecordProperty("contour", static_cast<int>(contour));
 }
 
 // The unit's output (`sim --silhouette`, the interface the checks use): per patch, in the order of
@@ -138,9 +145,11 @@ TEST(SilhouetteCli, SimWritesTheUnitsBlendedOutputWithinItsBound) {
 
 // The silhouette rule's factors on the unit: the patches the reference makes, and crack-free (the
 // welded output has as many vertices as the reference's).
-TEST(SilhouetteCli, SimTakesTheSilhouetteRulesFactors) {
+class SilhouetteRules : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SilhouetteRules, SimTakesTheRulesFactors) {
   TempDir dir;
-  const std::vector<std::string> view{"--adaptive", "silhouette", "--camera", "eye=2.6,1.3,-2.9,target=0,0.6,-0.2",
+  const std::vector<std::string> view{"--adaptive", GetParam(), "--camera", "eye=2.6,1.3,-2.9,target=0,0.6,-0.2",
                                       "--silhouette", "camera"};
   // The element counts of the written (welded) file: the mesh reader would weld again by position.
   auto run = [&](const char* cmd, const char* name) {
@@ -158,6 +167,8 @@ TEST(SilhouetteCli, SimTakesTheSilhouetteRulesFactors) {
   // Every shared point welded as in the crack-free reference: as many vertices and triangles.
   EXPECT_EQ(unit, run("tessellate", "ref.ply"));
 }
+
+INSTANTIATE_TEST_SUITE_P(PerEdgeAndContour, SilhouetteRules, ::testing::Values("silhouette", "contour"));
 
 // A feature end (a crease through vertex 0 between the two faces of edge 0-1) is the reference's:
 // the unit refuses the mesh, naming the vertex, and writes nothing.

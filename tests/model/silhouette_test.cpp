@@ -314,6 +314,152 @@ INSTANTIATE_TEST_SUITE_P(Partitionings, SilhouetteRule,
                                            Partitioning::fractional_even),
                          [](const auto& info) { return std::string(partitioning_name(info.param)); });
 
+// ---------------------------------------------------------------------------------------------
+// The contour rule: the per-patch test and the factors it raises.
+
+// g = (P - eye) . (P_u x P_v) at (u, v), from eval_bernstein and central differences: an
+// independent evaluation of what contour_can_cross bounds.
+double contour_function(const PnPatch& patch, const glm::dvec3& eye, double u, double v) {
+  constexpr double h = 1e-6;
+  auto at = [&](double a, double b) { return eval_bernstein(patch, a, b).position; };
+  const glm::dvec3 pu = (at(u + h, v) - at(u - h, v)) / (2 * h);
+  const glm::dvec3 pv = (at(u, v + h) - at(u, v - h)) / (2 * h);
+  return glm::dot(at(u, v) - eye, glm::cross(pu, pv));
+}
+
+PnPatch sphere_octant() {
+  PnInput in;
+  in.p = {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)};
+  in.n = in.p;  // a sphere's normals
+  return make_patch(in, NormalMode::Quadratic);
+}
+
+TEST(ContourCanCross, FollowsTheContourOfASphereOctant) {
+  const PnPatch octant = sphere_octant();
+  // From far up the z axis the sphere's contour is the circle z = 1/10 (r^2 / d): it crosses the
+  // octant, whose points run from z = 0 to 1.
+  EXPECT_TRUE(contour_can_cross(octant, {0, 0, 10}));
+  EXPECT_TRUE(contour_can_cross(octant, {10, 0, 0}));
+  // Seen head-on or from behind the sphere, the octant faces one way all over.
+  EXPECT_FALSE(contour_can_cross(octant, {5, 5, 5}));
+  EXPECT_FALSE(contour_can_cross(octant, {-5, -5, -5}));
+  // A flat triangle has no contour unless the eye is in its plane.
+  PnInput flat;
+  flat.p = {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0)};
+  flat.n = {glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1)};
+  const PnPatch plane = make_patch(flat, NormalMode::Quadratic);
+  EXPECT_FALSE(contour_can_cross(plane, {0.3, 0.3, 2}));
+  EXPECT_FALSE(contour_can_cross(plane, {0.3, 0.3, -2}));
+  EXPECT_TRUE(contour_can_cross(plane, {3, 3, 0}));  // g = 0 everywhere: counted as crossed
+}
+
+// Conservative: wherever dense sampling finds both signs of g, the test says the contour can
+// cross; where it says it cannot, every sample has one sign. Random curved patches and eyes.
+TEST(ContourCanCross, IsConservativeAgainstDenseSampling) {
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> x(-1.0, 1.0);
+  int crossed = 0, clear = 0, loose = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    PnInput in;
+    for (int c = 0; c < 3; ++c) {
+      in.p[c] = glm::dvec3(x(rng), x(rng), 0.3 * x(rng));
+      in.n[c] = glm::normalize(glm::dvec3(0.6 * x(rng), 0.6 * x(rng), 1.0));
+    }
+    const PnPatch patch = make_patch(in, NormalMode::Quadratic);
+    const glm::dvec3 eye(3 * x(rng), 3 * x(rng), 3 * x(rng));
+    int positive = 0, negative = 0;
+    constexpr int kSteps = 40;
+    for (int j = 0; j <= kSteps; ++j)
+      for (int k = 0; j + k <= kSteps; ++k) {
+        const double g = contour_function(patch, eye, double(j) / kSteps, double(k) / kSteps);
+        positive += g > 1e-9;
+        negative += g < -1e-9;
+      }
+    const bool sampled_both = positive > 0 && negative > 0;
+    const bool can_cross = contour_can_cross(patch, eye);
+    if (sampled_both) {
+      EXPECT_TRUE(can_cross) << "trial " << trial;
+    }
+    crossed += sampled_both;
+    clear += !can_cross;
+    loose += can_cross && !sampled_both;
+  }
+  EXPECT_GT(crossed, 40);  // the draw has both kinds
+  EXPECT_GT(clear, 40);
+  RecordProperty("crossed", crossed);
+  RecordProperty("marked_without_a_sampled_crossing", loose);
+}
+
+class ContourRule : public ::testing::TestWithParam<Partitioning> {};
+
+// Crack-free in every partitioning (both patches of an edge put the same points on it), one
+// factor per edge whichever face asks, and never below the silhouette rule.
+TEST_P(ContourRule, IsCrackFreeAndRefinesAtLeastAsMuchAsThePerEdgeRule) {
+  const Mesh& mesh = wuson();
+  TessSettings per_edge;
+  per_edge.kind = PatternKind::D3D11;
+  per_edge.source = FactorSource::Adaptive;
+  per_edge.rule = AdaptiveRule::Silhouette;
+  per_edge.partitioning = GetParam();
+  per_edge.camera.eye = {2.6, 1.3, -2.9};
+  per_edge.camera.target = {0.0, 0.6, -0.2};
+  per_edge.outline_tolerance = 0.1;
+  per_edge.silhouette.enabled = true;  // the blend too: the test runs on the blended patches
+  per_edge.silhouette.eye_from_camera = true;
+  TessSettings contour = per_edge;
+  contour.rule = AdaptiveRule::Contour;
+  bind_silhouette(per_edge, mesh);
+  bind_silhouette(contour, mesh);
+  const MeshSilhouette& field = *contour.silhouette_field;
+  ASSERT_GT(field.contour_patches(), 0u);
+  ASSERT_LT(field.contour_patches(), mesh.triangle_count());
+  EXPECT_EQ(per_edge.silhouette_field->contour_patches(), 0u);  // only the contour rule marks
+
+  std::uint64_t marked = 0, raised = 0;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, float> edge_factor;
+  const std::uint64_t shared = expect_closed(mesh, contour, [&](const PatchView& view) {
+    const std::size_t t = view.triangle;
+    const PatchFactors c = patch_factors(contour, mesh, t), e = patch_factors(per_edge, mesh, t);
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_GE(c.outer[i], e.outer[i]) << "triangle " << t;
+    EXPECT_GE(c.inner, e.inner);
+    raised += c.inner > e.inner;
+    if (field.contour_patch(t)) {
+      ++marked;
+      // Every edge of a marked patch as a silhouette edge (alpha 1).
+      const glm::uvec3& tri = mesh.triangles[t];
+      const std::array<int, 3> edge_of_outer{2, 0, 1};  // outer[i]'s edge (01 = 0, 12 = 1, 20 = 2)
+      for (std::size_t i = 0; i < 3; ++i) {
+        const int e = edge_of_outer[i];
+        const glm::dvec3& a = mesh.positions[tri[static_cast<std::size_t>(e)]];
+        const glm::dvec3& b = mesh.positions[tri[static_cast<std::size_t>((e + 1) % 3)]];
+        EXPECT_EQ(c.outer[i], silhouette_edge_factor(contour.camera, contour.outline_tolerance, 1.0,
+                                                     field.deviation(t)[static_cast<std::size_t>(e)], a, b));
+      }
+    }
+    // One factor per edge of welded positions, whichever face asks.
+    const glm::uvec3& tri = mesh.triangles[t];
+    const std::array<std::pair<int, int>, 3> ends{{{0, 2}, {0, 1}, {1, 2}}};  // outer[0..2]
+    for (std::size_t i = 0; i < 3; ++i) {
+      std::uint32_t a = tri[static_cast<std::size_t>(ends[i].first)], b = tri[static_cast<std::size_t>(ends[i].second)];
+      if (a > b) std::swap(a, b);
+      const auto [it, fresh] = edge_factor.emplace(std::make_pair(a, b), c.outer[i]);
+      if (!fresh) {
+        EXPECT_EQ(it->second, c.outer[i]) << "edge " << a << "-" << b;
+      }
+    }
+  });
+  EXPECT_GT(shared, mesh.triangle_count());
+  EXPECT_EQ(marked, field.contour_patches());
+  EXPECT_GT(raised, 0u) << "the contour rule refines some patch beyond the per-edge rule";
+  RecordProperty("contour_patches", static_cast<int>(marked));
+  RecordProperty("raised_inner_factors", static_cast<int>(raised));
+}
+
+INSTANTIATE_TEST_SUITE_P(Partitionings, ContourRule,
+                         ::testing::Values(Partitioning::integer, Partitioning::pow2, Partitioning::fractional_odd,
+                                           Partitioning::fractional_even),
+                         [](const auto& info) { return std::string(partitioning_name(info.param)); });
+
 TEST(SilhouetteRuleFactor, KeepsTheBlendedCurveWithinTheTolerance) {
   ScreenCamera cam;  // eye (0, 0, 5), 45 degrees, 720 pixels high
   const glm::dvec3 a(-0.5, 0, 0), b(0.5, 0, 0);
