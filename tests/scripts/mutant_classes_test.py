@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The mutation campaign reaches every class of parameter value of the shipped builds
-(docs/verification.md, Mutation campaign): a bug visible only at, say, three CPG copies or a 16-bit
-alpha must be reachable by some stimulus of scripts/mutants.py. Fails naming each class no
-stimulus reaches and the shipped build that has it. The check itself can fail: dropping the
+(docs/verification.md, Mutation campaign): a bug visible only at, say, three CPG copies or a
+16-bit alpha must be reachable by some stimulus of scripts/mutants.py. Fails naming each class no
+stimulus reaches and the shipped build that has it, and each mutant whose text no longer occurs
+exactly once in its file (the campaign would stop there). The check itself can fail: dropping the
 stimuli of each campaign build in turn must leave the classes only that build has uncovered."""
 import json
 import sys
@@ -34,6 +35,17 @@ def main():
     print(f"{len(stimuli)} stimuli on {len(reached)} builds reach every class of "
           f"{len([b for b in shipped if not dict(b['parameters']).get('InjectBug')])} shipped builds"
           if not missing else f"{len(missing)} classes unreached")
+
+    # Every mutant applies to the tree as it stands: its text occurs exactly once in its file (a
+    # rewrite of the line would otherwise stop the campaign at that mutant).
+    table = json.loads((ROOT / "scripts/mutants/mutants.json").read_text())["mutants"]
+    for m in table:
+        text = (ROOT / m["file"]).read_text()
+        for edit in [m] + m.get("also", []):
+            count = text.count(edit["find"])
+            if count != 1:
+                failures.append(f"mutant {m['id']}: its text occurs {count} times in {m['file']}, not once")
+    print(f"{len(table)} mutants apply to the tree")
 
     # Negative control: a build whose classes no other campaign build has is necessary; without its
     # stimuli the check must name those classes.
