@@ -60,6 +60,10 @@ struct RenderArgs {
   std::string up = "y";
   bool no_supersample = false;
   std::string view_camera;  // --view-camera: the picture's camera without --adaptive
+  std::string view_path;    // --view-path: one camera per line, one frame each
+  std::string contours;     // --contours: the visible contours and coverage as JSON
+  int contour_samples = 4;  // samples per pixel side of the contour map
+  double contour_depth_jump = 0.01;  // view-depth step that makes a contour, in bounding-box diagonals
   std::string output;
   bool quiet = false;
 };
@@ -253,9 +257,226 @@ PatchScalars fixed_point_errors(const Mesh& mesh, const sim::UnitConfig& cfg, Co
 
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
+// The cameras of --view-path: one eye=x,y,z[,target=x,y,z][,fov=deg] per line (as --camera);
+// blank lines and lines starting with '#' are skipped. The viewport is the picture's size.
+std::vector<ScreenCamera> read_view_path(const std::string& path, const glm::ivec2& size) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "file", "cannot be opened");
+  std::vector<ScreenCamera> cameras;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const std::size_t last = line.find_last_not_of(" \t\r");
+    AdaptiveOptions parse;
+    parse.adaptive = "screen";
+    parse.camera = line.substr(first, last - first + 1);
+    parse.viewport = std::to_string(size.x) + "x" + std::to_string(size.y);
+    TessSettings with_camera;
+    try {
+      parse.apply(with_camera, "render");
+      validate(with_camera, path);
+    } catch (const InputError& e) {
+      throw InputError(path, "line " + std::to_string(number), e.what());
+    }
+    cameras.push_back(with_camera.camera);
+  }
+  if (in.bad()) throw InputError(path, "file", "read error");
+  if (cameras.empty()) throw InputError(path, "file", "no camera (one eye=x,y,z[,target=x,y,z][,fov=deg] per line)");
+  return cameras;
+}
+
+// The output name of frame `index`: the one printf-style %d or %0Nd of `pattern` replaced.
+std::string frame_name(const std::string& pattern, std::size_t index) {
+  const std::size_t at = pattern.find('%');
+  std::size_t end = at + 1;
+  while (end < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[end]))) ++end;
+  const std::string digits = pattern.substr(at + 1, end - at - 1);
+  const std::size_t width = digits.empty() ? 0 : static_cast<std::size_t>(std::stoul(digits));
+  std::string number = std::to_string(index);
+  if (number.size() < width) number.insert(0, width - number.size(), '0');
+  return pattern.substr(0, at) + number + pattern.substr(end + 1);
+}
+
+// True when `pattern` holds exactly one %d or %0Nd (N < 10) and no other '%'.
+bool is_frame_pattern(const std::string& pattern) {
+  const std::size_t at = pattern.find('%');
+  if (at == std::string::npos || pattern.find('%', at + 1) != std::string::npos) return false;
+  std::size_t end = at + 1;
+  if (end < pattern.size() && pattern[end] == '0') {
+    ++end;
+    if (end < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[end]))) ++end;
+  }
+  return end < pattern.size() && pattern[end] == 'd';
+}
+
+render::Camera picture_camera(const ScreenCamera& from, render::UpAxis up, const glm::ivec2& size) {
+  render::Camera camera;
+  camera.eye = from.eye;
+  camera.target = from.target;
+  camera.up = up == render::UpAxis::Y ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+  if (glm::length(glm::cross(camera.up, camera.target - camera.eye)) == 0.0) camera.up = glm::dvec3(1, 0, 0);
+  camera.fov_y_deg = from.fov_deg;
+  camera.aspect = static_cast<double>(size.x) / size.y;
+  return camera;
+}
+
+std::string camera_text(const ScreenCamera& c) {
+  char text[256];
+  std::snprintf(text, sizeof text, "eye=%.9g,%.9g,%.9g,target=%.9g,%.9g,%.9g,fov=%.9g", c.eye.x, c.eye.y, c.eye.z,
+                c.target.x, c.target.y, c.target.z, c.fov_deg);
+  return text;
+}
+
+// One frame of --contours: the picture's contour map at samples x samples per pixel, in sample
+// units, with what was drawn.
+nlohmann::json contour_frame(const render::RenderMesh& drawn, const render::Camera& camera, const glm::ivec2& size,
+                             int samples, double depth_jump) {
+  render::RenderOptions options;
+  options.width = size.x * samples;
+  options.height = size.y * samples;
+  options.supersample = false;
+  const render::ContourMap map = render::Renderer(drawn, camera, options).contours(depth_jump);
+  return {{"triangles", drawn.triangles.size()}, {"vertices", drawn.positions.size()},
+          {"contour_samples", map.contour.size() / 2}, {"contour", map.contour}, {"coverage", map.coverage}};
+}
+
+nlohmann::json contour_document(const std::string& mesh_name, const TessSettings& settings, NormalMode mode,
+                                const glm::ivec2& size, int samples, double depth_jump) {
+  return {{"format", "tessim-contours"},
+          {"version", 1},
+          {"mesh", mesh_name},
+          {"pattern", settings.describe()},
+          {"normals", std::string(to_string(mode))},
+          {"width", size.x},
+          {"height", size.y},
+          {"samples_per_pixel", samples},
+          {"depth_jump", depth_jump},
+          {"frames", nlohmann::json::array()}};
+}
+
+void write_json(const std::string& path, const nlohmann::json& doc) {
+  AtomicOutput out(path);
+  out.stream() << doc.dump() << "\n";
+  out.commit();
+}
+
+void check_contour_options(const RenderArgs& args) {
+  if (args.contour_samples < 1 || args.contour_samples > 16)
+    throw InputError("command line", "--contour-samples", "must be 1..16 samples per pixel side");
+  if (!(args.contour_depth_jump > 0.0) || !std::isfinite(args.contour_depth_jump))
+    throw InputError("command line", "--contour-depth-jump", "must be a positive finite fraction of the diagonal");
+}
+
+// tessim render --view-path: one frame per camera of the file, each drawn as a single shaded
+// panel (-o with a frame number) and/or measured (--contours: one document, a frame each). With
+// --adaptive each frame's camera also sets the factors (and, with --silhouette camera, the
+// blend's eye); without it a uniform or fixed pattern is tessellated once for all frames, unless
+// --silhouette camera makes the blend follow each frame's eye.
+void run_render_path(const RenderArgs& args, const glm::ivec2& size) {
+  const std::vector<ScreenCamera> cameras = read_view_path(args.view_path, size);
+  // The frames' cameras stand in for --camera and for --silhouette camera's eye: the pattern is
+  // parsed with the first, and each frame then takes its own.
+  PatternOptions pattern = args.pattern;
+  if (pattern.adaptive.given() && pattern.adaptive.camera.empty()) pattern.adaptive.camera = camera_text(cameras[0]);
+  bool blend_follows = false;
+  if (!pattern.adaptive.given() && pattern.silhouette.starts_with("camera")) {
+    const glm::dvec3& e = cameras[0].eye;
+    pattern.silhouette = "eye=" + std::to_string(e.x) + "," + std::to_string(e.y) + "," + std::to_string(e.z) +
+                         pattern.silhouette.substr(6);
+    blend_follows = true;
+  }
+  TessSettings settings = pattern.settings("render");
+  if (settings.silhouette.enabled && settings.silhouette.eye_from_camera) blend_follows = true;
+  const NormalMode mode = parse_normals_option("render", args.normals);
+  for (const auto& [given, option] :
+       {std::pair{!args.view_camera.empty(), "--view-camera"}, std::pair{args.view_given, "--azimuth/--elevation"},
+        std::pair{!args.compare.empty(), "--compare"}, std::pair{args.color != "shaded", "--color"},
+        std::pair{args.color_max > 0.0, "--color-max"}, std::pair{!args.config.empty(), "--config"},
+        std::pair{!args.caption.empty(), "--caption"}})
+    if (given) throw InputError("command line", option, "is not taken with --view-path (frames are shaded panels)");
+  if (settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive &&
+      settings.rule == AdaptiveRule::Nyquist)
+    throw InputError("command line", "--view-path", "--adaptive nyquist has no camera to follow");
+  if (args.output.empty() && args.contours.empty())
+    throw InputError("command line", "--view-path", "needs -o FRAME_%04d.png and/or --contours FILE.json");
+  if (!args.output.empty()) {
+    if (!is_frame_pattern(args.output))
+      throw InputError("command line", "-o", "with --view-path must hold one %d or %0Nd for the frame number");
+    if (!render::is_supported_image(frame_name(args.output, 0)))
+      throw InputError(args.output, "output", "unsupported image format (use .png or .exr)");
+  }
+  check_contour_options(args);
+  render::UpAxis up = render::UpAxis::Y;
+  if (args.up == "z" || args.up == "Z") up = render::UpAxis::Z;
+  else if (args.up != "y" && args.up != "Y") throw InputError("command line", "--up", "'" + args.up + "' is not one of y, z");
+  std::vector<OutputPath> outputs;
+  if (!args.contours.empty()) outputs.push_back({"--contours", args.contours});
+  if (!args.output.empty()) outputs.push_back({"-o", frame_name(args.output, 0)});
+  check_output_paths(outputs, {{"MESH", args.mesh}, {"--view-path", args.view_path}});
+
+  const Mesh mesh = load_mesh(args.mesh);
+  const std::string mesh_name = mesh.source.empty() ? args.mesh : mesh.source;
+  const bool adaptive = settings.kind == PatternKind::D3D11 && settings.source == FactorSource::Adaptive;
+  const bool per_frame = adaptive || blend_follows;
+  const double diagonal = bounding_box(mesh).diagonal() > 0.0 ? bounding_box(mesh).diagonal() : 1.0;
+  const double depth_jump = args.contour_depth_jump * diagonal;
+  nlohmann::json doc = contour_document(mesh_name, settings, mode, size, args.contour_samples, depth_jump);
+
+  render::RenderMesh drawn;
+  ProgressDisplay progress("render: frames", "frames", cameras.size(), args.quiet);
+  for (std::size_t k = 0; k < cameras.size(); ++k) {
+    if (per_frame || k == 0) {
+      TessSettings frame = settings;  // a fresh silhouette field per camera
+      frame.silhouette_field.reset();
+      if (adaptive) {
+        frame.camera.eye = cameras[k].eye;
+        frame.camera.target = cameras[k].target;
+        frame.camera.fov_deg = cameras[k].fov_deg;
+      }
+      if (blend_follows && !adaptive) frame.silhouette.eye = cameras[k].eye;
+      bind_silhouette(frame, mesh);
+      PatternCache patterns(frame);
+      const TessellationCounts counts = count_tessellation(mesh, patterns);
+      if (counts.triangles > kMaxRenderedTriangles)
+        throw InputError(args.mesh, "frame " + std::to_string(k), std::to_string(counts.triangles) +
+                                                                  " tessellated triangles exceed the renderer's limit");
+      drawn = pn_tessellated(mesh, frame, counts, mode, nullptr);
+      render::validate(drawn, mesh_name);
+    }
+    const render::Camera camera = picture_camera(cameras[k], up, size);
+    if (!args.contours.empty()) {
+      nlohmann::json f = contour_frame(drawn, camera, size, args.contour_samples, depth_jump);
+      f["frame"] = k;
+      f["camera"] = camera_text(cameras[k]);
+      doc["frames"].push_back(std::move(f));
+    }
+    if (!args.output.empty()) {
+      render::RenderOptions options;
+      options.width = size.x;
+      options.height = size.y;
+      options.wireframe = args.wireframe;
+      options.supersample = !args.no_supersample;
+      render::write_image(render::Renderer(drawn, camera, options).render(), frame_name(args.output, k));
+    }
+    if (progress.counter()) progress.counter()->fetch_add(1);
+  }
+  progress.finish();
+  if (!args.contours.empty()) write_json(args.contours, doc);
+  std::printf("rendered %zu frames of %s: %s, %s normals, %dx%d", cameras.size(), mesh_name.c_str(),
+              settings.describe().c_str(), std::string(to_string(mode)).c_str(), size.x, size.y);
+  if (!args.output.empty()) std::printf(", pictures %s", args.output.c_str());
+  if (!args.contours.empty()) std::printf(", contours %s (%d x %d samples per pixel)", args.contours.c_str(),
+                                          args.contour_samples, args.contour_samples);
+  std::printf("\n");
+}
+
 void run_render(const RenderArgs& args) {
   // Validate everything before loading or computing anything.
   const glm::ivec2 size = parse_image_size(args.size, "--size");
+  if (!args.view_path.empty()) return run_render_path(args, size);
+  if (args.output.empty()) throw InputError("command line", "-o", "is required (the picture)");
+  check_contour_options(args);
   TessSettings settings = args.pattern.settings("render");
   const NormalMode mode = parse_normals_option("render", args.normals);
   const ComparePanels compare = parse_compare(args.compare);
@@ -309,7 +530,9 @@ void run_render(const RenderArgs& args) {
     throw InputError(output.string(), "output",
                      "unsupported image format '" + output.extension().string() + "' (use .png or .exr)");
 
-  check_output_paths({{"-o", output.string()}}, {{"MESH", args.mesh}, {"--config", args.config}});
+  std::vector<OutputPath> outputs{{"-o", output.string()}};
+  if (!args.contours.empty()) outputs.push_back({"--contours", args.contours});
+  check_output_paths(outputs, {{"MESH", args.mesh}, {"--config", args.config}});
 
   const Mesh mesh = load_mesh(args.mesh);
   bind_silhouette(settings, mesh);
@@ -505,6 +728,15 @@ void run_render(const RenderArgs& args) {
   if (bar_image.height > 0) writer.write_rows(bar_image);
   writer.finish();
 
+  if (!args.contours.empty()) {
+    nlohmann::json doc = contour_document(mesh_name, settings, mode, size, args.contour_samples,
+                                          args.contour_depth_jump * diagonal);
+    nlohmann::json f = contour_frame(panels.back(), camera, size, args.contour_samples, doc["depth_jump"]);
+    f["frame"] = 0;
+    doc["frames"].push_back(std::move(f));
+    write_json(args.contours, doc);
+  }
+
   // The image on standard output: the summary goes to stderr.
   std::FILE* summary = output_kind(output) == OutputKind::Stdout ? stderr : stdout;
   std::fprintf(summary, "wrote %s: %dx%d, %zu input triangles, %zu %s triangles (%s, %s normals)",
@@ -565,8 +797,22 @@ void register_render(CLI::App& app) {
                   "automatic view; with --adaptive the picture is taken from its camera");
   cmd->add_option("--up", args->up, "Up axis of the model: y or z (front is +Z or -Y)")->capture_default_str();
   cmd->add_flag("--no-supersample", args->no_supersample, "One sample per pixel instead of 2x2");
-  cmd->add_option("-o,--output", args->output, "Output image: .png (8-bit sRGB) or .exr (half-float linear)")
-      ->required();
+  cmd->add_option("--view-path", args->view_path,
+                  "Render one frame per camera of this file (one eye=x,y,z[,target=x,y,z][,fov=deg] per line, '#' "
+                  "comments): -o then names the frames with %d or %0Nd; with --adaptive each frame's camera sets the "
+                  "factors, with --silhouette camera the blend's eye");
+  cmd->add_option("--contours", args->contours,
+                  "Also write the picture's visible contours (outer outline and interior occluding contours) and "
+                  "coverage, per frame, as JSON at --contour-samples per pixel side (docs/images.md)");
+  cmd->add_option("--contour-samples", args->contour_samples, "with --contours: samples per pixel side (1..16)")
+      ->capture_default_str();
+  cmd->add_option("--contour-depth-jump", args->contour_depth_jump,
+                  "with --contours: the step in view depth between neighbouring samples that makes a contour, in "
+                  "bounding-box diagonals")
+      ->transform(number_check<double>("command line", "--contour-depth-jump", "positive finite numbers"))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", args->output,
+                  "Output image: .png (8-bit sRGB) or .exr (half-float linear); with --view-path a pattern with %d");
   cmd->add_flag("--quiet", args->quiet, kQuietHelp);
   cmd->callback([args, azimuth, elevation] {
     args->view_given = azimuth->count() > 0 || elevation->count() > 0;

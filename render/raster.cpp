@@ -215,9 +215,13 @@ struct Renderer::Impl {
   }
 
   // Visibility for sample rows [row_begin, row_end).
-  void rasterize(int row_begin, int row_end, std::vector<Sample>& samples) const {
+  // With `subset`, only those triangles (in order); else all.
+  void rasterize(int row_begin, int row_end, std::vector<Sample>& samples,
+                 const std::vector<std::uint32_t>* subset = nullptr) const {
     samples.assign(static_cast<std::size_t>(row_end - row_begin) * sample_width, Sample{});
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const std::size_t count = subset ? subset->size() : mesh.triangles.size();
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t t = subset ? (*subset)[k] : k;
       const glm::uvec3& tri = mesh.triangles[t];
       const Projected& a = projected[tri.x];
       const Projected& b = projected[tri.y];
@@ -348,6 +352,62 @@ struct Renderer::Impl {
     return detail;
   }
 
+  ContourMap contours(double depth_jump) const {
+    ContourMap map;
+    map.width = sample_width;
+    map.height = sample_height;
+    // View depth per sample, infinite for background; each band is rasterized with one row of
+    // its neighbours above and below so that contours across band edges are found.
+    // The triangles each band (with its neighbour rows) can touch, found once: a dense
+    // tessellation drawn at many samples has most triangles outside most bands.
+    const int bands = (sample_height + kBandRows - 1) / kBandRows;
+    std::vector<std::vector<std::uint32_t>> in_band(static_cast<std::size_t>(bands));
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const glm::uvec3& tri = mesh.triangles[t];
+      const Projected& a = projected[tri.x];
+      const Projected& b = projected[tri.y];
+      const Projected& c = projected[tri.z];
+      if (!a.valid || !b.valid || !c.valid) continue;
+      const double y_min = std::min({a.y, b.y, c.y}), y_max = std::max({a.y, b.y, c.y});
+      if (!(y_max >= 0.0) || !(y_min <= sample_height) || !std::isfinite(y_max - y_min)) continue;
+      const int first = std::clamp(static_cast<int>(std::floor((y_min - 1.0) / kBandRows)), 0, bands - 1);
+      const int last = std::clamp(static_cast<int>(std::floor((y_max + 1.0) / kBandRows)), 0, bands - 1);
+      for (int k = first; k <= last; ++k) in_band[static_cast<std::size_t>(k)].push_back(static_cast<std::uint32_t>(t));
+    }
+    std::vector<Sample> samples;
+    std::vector<float> depth;
+    for (int band = 0; band < sample_height; band += kBandRows) {
+      const int band_end = std::min(sample_height, band + kBandRows);
+      const int row_begin = std::max(0, band - 1), row_end = std::min(sample_height, band_end + 1);
+      rasterize(row_begin, row_end, samples, &in_band[static_cast<std::size_t>(band / kBandRows)]);
+      depth.resize(samples.size());
+      for (std::size_t i = 0; i < samples.size(); ++i)
+        depth[i] = samples[i].triangle >= 0 ? 1.0f / samples[i].inv_depth : std::numeric_limits<float>::infinity();
+      auto at = [&](int x, int y) { return depth[static_cast<std::size_t>(y - row_begin) * sample_width + x]; };
+      for (int y = band; y < band_end; ++y) {
+        int run_begin = -1;
+        for (int x = 0; x <= sample_width; ++x) {
+          const bool covered = x < sample_width && std::isfinite(at(x, y));
+          if (covered && run_begin < 0) run_begin = x;
+          if (!covered && run_begin >= 0) {
+            map.coverage.insert(map.coverage.end(), {static_cast<std::uint32_t>(y), static_cast<std::uint32_t>(run_begin),
+                                                     static_cast<std::uint32_t>(x)});
+            run_begin = -1;
+          }
+          if (!covered) continue;
+          const float d = at(x, y);
+          // Background is infinitely far, so one comparison finds both kinds of contour.
+          const bool contour = (x > 0 && at(x - 1, y) - d > depth_jump) ||
+                               (x + 1 < sample_width && at(x + 1, y) - d > depth_jump) ||
+                               (y > 0 && at(x, y - 1) - d > depth_jump) ||
+                               (y + 1 < sample_height && at(x, y + 1) - d > depth_jump);
+          if (contour) map.contour.insert(map.contour.end(), {static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)});
+        }
+      }
+    }
+    return map;
+  }
+
   Image render_rows(int y_begin, int y_end) const {
     if (y_begin < 0 || y_end > options.height || y_begin > y_end)
       throw std::out_of_range("Renderer::render_rows: rows outside the image");
@@ -379,6 +439,11 @@ Renderer::~Renderer() = default;
 Image Renderer::render_rows(int y_begin, int y_end) const { return impl_->render_rows(y_begin, y_end); }
 int Renderer::width() const { return impl_->options.width; }
 double Renderer::visible_detail() const { return impl_->visible_detail(); }
+ContourMap Renderer::contours(double depth_jump) const {
+  if (!(depth_jump > 0.0) || !std::isfinite(depth_jump))
+    throw std::invalid_argument("Renderer::contours: depth_jump must be positive and finite");
+  return impl_->contours(depth_jump);
+}
 int Renderer::height() const { return impl_->options.height; }
 
 ViewAngles best_view(const RenderMesh& mesh, UpAxis up) {

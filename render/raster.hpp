@@ -97,6 +97,17 @@ struct Image {
   const float* pixel(int x, int y) const { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
 };
 
+// What a picture shows of the surface's shape, at the renderer's sample resolution (its width x
+// height, twice that with supersampling), for measuring outlines: the visible contour samples
+// (covered samples with a 4-neighbour that is background or farther in view depth by more than a
+// jump: the outer outline and every interior occluding contour, such as a leg in front of the
+// body; the image border is not a contour) and the coverage as runs of covered samples per row.
+struct ContourMap {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> contour;   // x, y of each contour sample, row by row
+  std::vector<std::uint32_t> coverage;  // y, x_begin, x_end (exclusive) of each run of covered samples
+};
+
 // Renders one mesh, which must outlive the renderer (it is referenced, not copied). Rows are
 // rasterized in bands, so memory beyond the mesh and the returned rows is bounded by the band
 // size whatever the image size.
@@ -112,6 +123,8 @@ class Renderer {
   Image render() const { return render_rows(0, height()); }
   int width() const;
   int height() const;
+  // The contours and coverage (ContourMap); `depth_jump` in the mesh's units, > 0.
+  ContourMap contours(double depth_jump) const;
   // How much of the mesh's detail the view shows (for choosing a view): over the visible
   // samples, the sum of their triangle's density, mean triangle area / its area (capped at 100).
   double visible_detail() const;
