@@ -257,33 +257,55 @@ PatchScalars fixed_point_errors(const Mesh& mesh, const sim::UnitConfig& cfg, Co
 
 std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
-// The cameras of --view-path: one eye=x,y,z[,target=x,y,z][,fov=deg] per line (as --camera);
-// blank lines and lines starting with '#' are skipped. The viewport is the picture's size.
-std::vector<ScreenCamera> read_view_path(const std::string& path, const glm::ivec2& size) {
+// One frame of --view-path: the camera the picture is taken from, and the camera the view-
+// dependent tessellation is computed for (the adaptive factors, the blend's eye): the same unless
+// the line names a second camera after ';', which freezes the tessellation of another view (what
+// a frame shows before its factors are updated: popping is the difference).
+struct PathFrame {
+  ScreenCamera picture;
+  ScreenCamera tessellation;
+};
+
+ScreenCamera parse_path_camera(const std::string& text, const glm::ivec2& size, const std::string& path, int number) {
+  AdaptiveOptions parse;
+  parse.adaptive = "screen";
+  const std::size_t first = text.find_first_not_of(" \t\r");
+  const std::size_t last = text.find_last_not_of(" \t\r");
+  parse.camera = first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+  parse.viewport = std::to_string(size.x) + "x" + std::to_string(size.y);
+  TessSettings with_camera;
+  try {
+    parse.apply(with_camera, "render");
+    validate(with_camera, path);
+  } catch (const InputError& e) {
+    throw InputError(path, "line " + std::to_string(number), e.what());
+  }
+  return with_camera.camera;
+}
+
+// The frames of --view-path: one eye=x,y,z[,target=x,y,z][,fov=deg] per line (as --camera),
+// optionally followed by '; eye=...' for the tessellation's camera; blank lines and lines
+// starting with '#' are skipped. The viewport is the picture's size.
+std::vector<PathFrame> read_view_path(const std::string& path, const glm::ivec2& size) {
   std::ifstream in(path);
   if (!in) throw InputError(path, "file", "cannot be opened");
-  std::vector<ScreenCamera> cameras;
+  std::vector<PathFrame> frames;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
     const std::size_t first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
-    const std::size_t last = line.find_last_not_of(" \t\r");
-    AdaptiveOptions parse;
-    parse.adaptive = "screen";
-    parse.camera = line.substr(first, last - first + 1);
-    parse.viewport = std::to_string(size.x) + "x" + std::to_string(size.y);
-    TessSettings with_camera;
-    try {
-      parse.apply(with_camera, "render");
-      validate(with_camera, path);
-    } catch (const InputError& e) {
-      throw InputError(path, "line " + std::to_string(number), e.what());
-    }
-    cameras.push_back(with_camera.camera);
+    const std::size_t split = line.find(';');
+    if (split != std::string::npos && line.find(';', split + 1) != std::string::npos)
+      throw InputError(path, "line " + std::to_string(number), "more than two cameras (picture; tessellation)");
+    PathFrame frame;
+    frame.picture = parse_path_camera(line.substr(0, split), size, path, number);
+    frame.tessellation =
+        split == std::string::npos ? frame.picture : parse_path_camera(line.substr(split + 1), size, path, number);
+    frames.push_back(frame);
   }
   if (in.bad()) throw InputError(path, "file", "read error");
-  if (cameras.empty()) throw InputError(path, "file", "no camera (one eye=x,y,z[,target=x,y,z][,fov=deg] per line)");
-  return cameras;
+  if (frames.empty()) throw InputError(path, "file", "no camera (one eye=x,y,z[,target=x,y,z][,fov=deg] per line)");
+  return frames;
 }
 
 // The output name of frame `index`: the one printf-style %d or %0Nd of `pattern` replaced.
@@ -374,14 +396,14 @@ void check_contour_options(const RenderArgs& args) {
 // blend's eye); without it a uniform or fixed pattern is tessellated once for all frames, unless
 // --silhouette camera makes the blend follow each frame's eye.
 void run_render_path(const RenderArgs& args, const glm::ivec2& size) {
-  const std::vector<ScreenCamera> cameras = read_view_path(args.view_path, size);
+  const std::vector<PathFrame> cameras = read_view_path(args.view_path, size);
   // The frames' cameras stand in for --camera and for --silhouette camera's eye: the pattern is
   // parsed with the first, and each frame then takes its own.
   PatternOptions pattern = args.pattern;
-  if (pattern.adaptive.given() && pattern.adaptive.camera.empty()) pattern.adaptive.camera = camera_text(cameras[0]);
+  if (pattern.adaptive.given() && pattern.adaptive.camera.empty()) pattern.adaptive.camera = camera_text(cameras[0].tessellation);
   bool blend_follows = false;
   if (!pattern.adaptive.given() && pattern.silhouette.starts_with("camera")) {
-    const glm::dvec3& e = cameras[0].eye;
+    const glm::dvec3& e = cameras[0].tessellation.eye;
     pattern.silhouette = "eye=" + std::to_string(e.x) + "," + std::to_string(e.y) + "," + std::to_string(e.z) +
                          pattern.silhouette.substr(6);
     blend_follows = true;
@@ -429,12 +451,13 @@ void run_render_path(const RenderArgs& args, const glm::ivec2& size) {
     if (per_frame || k == 0) {
       TessSettings frame = settings;  // a fresh silhouette field per camera
       frame.silhouette_field.reset();
+      const ScreenCamera& from = cameras[k].tessellation;
       if (adaptive) {
-        frame.camera.eye = cameras[k].eye;
-        frame.camera.target = cameras[k].target;
-        frame.camera.fov_deg = cameras[k].fov_deg;
+        frame.camera.eye = from.eye;
+        frame.camera.target = from.target;
+        frame.camera.fov_deg = from.fov_deg;
       }
-      if (blend_follows && !adaptive) frame.silhouette.eye = cameras[k].eye;
+      if (blend_follows && !adaptive) frame.silhouette.eye = from.eye;
       bind_silhouette(frame, mesh);
       PatternCache patterns(frame);
       const TessellationCounts counts = count_tessellation(mesh, patterns);
@@ -444,11 +467,12 @@ void run_render_path(const RenderArgs& args, const glm::ivec2& size) {
       drawn = pn_tessellated(mesh, frame, counts, mode, nullptr);
       render::validate(drawn, mesh_name);
     }
-    const render::Camera camera = picture_camera(cameras[k], up, size);
+    const render::Camera camera = picture_camera(cameras[k].picture, up, size);
     if (!args.contours.empty()) {
       nlohmann::json f = contour_frame(drawn, camera, size, args.contour_samples, depth_jump);
       f["frame"] = k;
-      f["camera"] = camera_text(cameras[k]);
+      f["camera"] = camera_text(cameras[k].picture);
+      f["tessellation_camera"] = camera_text(cameras[k].tessellation);
       doc["frames"].push_back(std::move(f));
     }
     if (!args.output.empty()) {
@@ -800,7 +824,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("--view-path", args->view_path,
                   "Render one frame per camera of this file (one eye=x,y,z[,target=x,y,z][,fov=deg] per line, '#' "
                   "comments): -o then names the frames with %d or %0Nd; with --adaptive each frame's camera sets the "
-                  "factors, with --silhouette camera the blend's eye");
+                  "factors, with --silhouette camera the blend's eye (a second camera after ';' sets them instead)");
   cmd->add_option("--contours", args->contours,
                   "Also write the picture's visible contours (outer outline and interior occluding contours) and "
                   "coverage, per frame, as JSON at --contour-samples per pixel side (docs/images.md)");

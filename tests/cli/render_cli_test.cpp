@@ -207,3 +207,119 @@ TEST(RenderCommand, ColourOptionsRejectWhatCannotBeMeasured) {
     EXPECT_FALSE(fs::exists(out)) << line;
   }
 }
+
+namespace {
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+void write_lines(const fs::path& path, const std::vector<std::string>& lines) {
+  std::ofstream out(path);
+  for (const std::string& line : lines) out << line << '\n';
+}
+
+}  // namespace
+
+// --view-path renders a frame per camera; --contours measures each. A uniform pattern ignores a
+// frame's tessellation camera; an adaptive one follows it (the same camera twice is a plain
+// frame, a far one changes the factors); the single-picture --contours agrees with the path's
+// frame from the same camera; frames are written as numbered pictures.
+TEST(RenderCommand, ViewPathFramesAndTheirContours) {
+  TempDir dir;
+  const std::string near = "eye=1.5,1.8,4.5,target=0,0.75,0,fov=40";
+  const std::string side = "eye=4.6,1.2,0.5,target=0,0.75,0,fov=40";
+  const std::string far = "eye=30,9,3,target=0,0.75,0,fov=40";
+  const fs::path path = dir.path() / "views.path";
+  write_lines(path, {"# a comment", near, "", side, side + " ; " + far, side + " ;" + side});
+  const fs::path uniform = dir.path() / "uniform.json";
+  const TessimRun u = run_tessim({"render", kWuson, "-L", "2", "--size", "160x120", "--view-path", path.string(),
+                                  "--contours", uniform.string(), "-o", (dir.path() / "f%02d.png").string()},
+                                 dir.path());
+  ASSERT_EQ(u.status, 0) << u.err;
+  EXPECT_NE(u.out.find("rendered 4 frames"), std::string::npos) << u.out;
+  for (const char* name : {"f00.png", "f01.png", "f02.png", "f03.png"}) {
+    const ReadBack image = read_back(dir.path() / name);
+    EXPECT_EQ(image.width, 160) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "f04.png"));
+  const nlohmann::json doc = read_json(uniform);
+  EXPECT_EQ(doc["format"], "tessim-contours");
+  EXPECT_EQ(doc["samples_per_pixel"], 4);
+  ASSERT_EQ(doc["frames"].size(), 4u);
+  for (const auto& frame : doc["frames"]) {
+    EXPECT_EQ(frame["triangles"], 3732 * 4);
+    EXPECT_GT(frame["contour_samples"].get<int>(), 200);
+    for (std::size_t i = 0; i < frame["contour"].size(); i += 2) {
+      ASSERT_LT(frame["contour"][i].get<int>(), 160 * 4);
+      ASSERT_LT(frame["contour"][i + 1].get<int>(), 120 * 4);
+    }
+  }
+  EXPECT_NE(doc["frames"][0]["contour"], doc["frames"][1]["contour"]);  // another view
+  EXPECT_EQ(doc["frames"][1]["contour"], doc["frames"][2]["contour"]);  // uniform: the same surface
+  EXPECT_EQ(doc["frames"][1]["contour"], doc["frames"][3]["contour"]);
+
+  const fs::path adaptive = dir.path() / "adaptive.json";
+  const TessimRun a = run_tessim({"render", kWuson, "--adaptive", "silhouette", "--viewport", "160x120",
+                                  "--outline-tolerance", "0.25", "--size", "160x120", "--view-path", path.string(),
+                                  "--contours", adaptive.string()},
+                                 dir.path());
+  ASSERT_EQ(a.status, 0) << a.err;
+  const nlohmann::json ad = read_json(adaptive);
+  ASSERT_EQ(ad["frames"].size(), 4u);
+  EXPECT_EQ(ad["frames"][1]["contour"], ad["frames"][3]["contour"]);    // its own camera twice
+  EXPECT_EQ(ad["frames"][1]["triangles"], ad["frames"][3]["triangles"]);
+  EXPECT_GT(ad["frames"][1]["triangles"].get<int>(), ad["frames"][2]["triangles"].get<int>());  // far: coarser
+  EXPECT_NE(ad["frames"][1]["contour"], ad["frames"][2]["contour"]);    // the stale factors show
+  EXPECT_EQ(ad["frames"][2]["camera"], ad["frames"][1]["camera"]);
+  EXPECT_NE(ad["frames"][2]["tessellation_camera"], ad["frames"][1]["tessellation_camera"]);
+
+  // One picture with --contours: the same map as the path's frame from that camera.
+  const fs::path single = dir.path() / "single.json";
+  const TessimRun s = run_tessim({"render", kWuson, "-L", "2", "--size", "160x120", "--view-camera", side, "--contours",
+                                  single.string(), "-o", (dir.path() / "single.png").string()},
+                                 dir.path());
+  ASSERT_EQ(s.status, 0) << s.err;
+  EXPECT_EQ(read_json(single)["frames"][0]["contour"], doc["frames"][1]["contour"]);
+}
+
+TEST(RenderCommand, ViewPathRejectsBadFramesBeforeWritingAnything) {
+  TempDir dir;
+  const fs::path bad_line = dir.path() / "bad.path";
+  write_lines(bad_line, {"eye=1,2,3", "eye=1,2", "eye=1,2,3"});
+  const fs::path three = dir.path() / "three.path";
+  write_lines(three, {"eye=1,2,3 ; eye=3,2,1 ; eye=0,0,5"});
+  const fs::path empty = dir.path() / "empty.path";
+  write_lines(empty, {"# nothing", ""});
+  const fs::path good = dir.path() / "good.path";
+  write_lines(good, {"eye=1.5,1.8,4.5,target=0,0.75,0"});
+  TempDir scratch;
+  const std::string json = (dir.path() / "c.json").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+      {{"--view-path", bad_line.string(), "--contours", json}, "bad.path: line 2"},
+      {{"--view-path", three.string(), "--contours", json}, "more than two cameras"},
+      {{"--view-path", empty.string(), "--contours", json}, "no camera"},
+      {{"--view-path", (dir.path() / "missing.path").string(), "--contours", json}, "cannot be opened"},
+      {{"--view-path", good.string()}, "needs -o"},
+      {{"--view-path", good.string(), "-o", (dir.path() / "frame.png").string()}, "%d"},
+      {{"--view-path", good.string(), "-o", (dir.path() / "f%d%d.png").string()}, "%d"},
+      {{"--view-path", good.string(), "--contours", json, "--view-camera", "eye=1,2,3"}, "--view-camera"},
+      {{"--view-path", good.string(), "--contours", json, "--compare", "flat"}, "--compare"},
+      {{"--view-path", good.string(), "--contours", json, "--contour-samples", "0"}, "--contour-samples"},
+      {{"--view-path", good.string(), "--contours", json, "--contour-depth-jump", "0"}, "--contour-depth-jump"},
+      {{"--view-path", good.string(), "--contours", json, "--adaptive", "nyquist", "--displace", "sine",
+        "--amplitude", "0.01", "--frequency", "5"},
+       "nyquist"},
+  };
+  for (const auto& [extra, expected] : cases) {
+    std::vector<std::string> argv{"render", kWuson, "--size", "64x48"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    const TessimRun r = run_tessim(argv, scratch.path());
+    EXPECT_EQ(r.status, 2) << expected << "\n" << r.out;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    std::vector<std::string> left = dir.entries();
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"bad.path", "empty.path", "good.path", "three.path"})) << expected;
+  }
+}

@@ -364,3 +364,92 @@ TEST(Raster, PngAndExrReadBackAtTheirResolution) {
   std::sort(entries.begin(), entries.end());
   EXPECT_EQ(entries, (std::vector<fs::path>{"OUT.EXR", "out.png"}));  // no temporaries left
 }
+
+// A small square in front of a large one, seen head-on: the contour map holds the large square's
+// outline against the background and the small one's against the large one (an interior occluding
+// contour), each as the inner ring of samples of its rectangle, on every row including the rows
+// next to a band edge; the image border is not a contour; coverage is the large square's rows.
+TEST(Raster, ContoursAreTheOutlineAndTheOccludingEdges) {
+  auto square = [](double half, double z, RenderMesh& m) {
+    const auto base = static_cast<unsigned>(m.positions.size());
+    for (const glm::dvec2 c : {glm::dvec2(-half, -half), glm::dvec2(half, -half), glm::dvec2(half, half),
+                               glm::dvec2(-half, half)}) {
+      m.positions.push_back({c.x, c.y, z});
+      m.normals.push_back({0, 0, 1});
+    }
+    m.triangles.push_back(glm::uvec3(0, 1, 2) + glm::uvec3(base));
+    m.triangles.push_back(glm::uvec3(0, 2, 3) + glm::uvec3(base));
+  };
+  RenderMesh scene;
+  square(1.0, 0.0, scene);
+  square(0.3, 1.0, scene);
+  RenderOptions options;
+  options.width = 150;
+  options.height = 200;  // several bands of rows
+  options.supersample = false;
+  // Shifting the camera moves the squares' edges across the bands' edges.
+  for (double shift : {0.0, 0.013, 0.031, 0.047}) {
+    Camera camera;
+    camera.eye = {0, shift, 7};
+    camera.target = {0, shift, 0};
+    camera.aspect = 0.75;
+    const ContourMap map = Renderer(scene, camera, options).contours(0.5);
+    ASSERT_EQ(map.width, 150);
+    ASSERT_EQ(map.height, 200);
+    std::vector<std::vector<bool>> contour(200, std::vector<bool>(150, false));
+    for (std::size_t i = 0; i < map.contour.size(); i += 2) contour[map.contour[i + 1]][map.contour[i]] = true;
+    // Each square's covered rectangle, from the coverage of each row (rows with two runs never occur:
+    // the small square lies inside the large one).
+    int top = -1, bottom = -1, left = 0, right = 0;
+    for (std::size_t i = 0; i < map.coverage.size(); i += 3) {
+      const int y = static_cast<int>(map.coverage[i]);
+      if (top < 0) top = y;
+      ASSERT_LT(bottom, y) << "x " << map.coverage[i + 1] << ".." << map.coverage[i + 2] << " after " << left << ".." << right << " shift " << shift;
+      bottom = y;
+      left = static_cast<int>(map.coverage[i + 1]);
+      right = static_cast<int>(map.coverage[i + 2]) - 1;
+    }
+    ASSERT_GT(bottom - top, 100) << shift;
+    std::size_t on_outline = 0;
+    int inner_left = right, inner_right = left, inner_top = bottom, inner_bottom = top;
+    std::vector<glm::ivec2> inner;
+    for (int y = top; y <= bottom; ++y)
+      for (int x = left; x <= right; ++x) {
+        if (!contour[static_cast<std::size_t>(y)][static_cast<std::size_t>(x)]) continue;
+        if (y == top || y == bottom || x == left || x == right) {
+          ++on_outline;
+          continue;
+        }
+        inner.emplace_back(x, y);
+        inner_left = std::min(inner_left, x);
+        inner_right = std::max(inner_right, x);
+        inner_top = std::min(inner_top, y);
+        inner_bottom = std::max(inner_bottom, y);
+      }
+    const std::size_t ring_samples = static_cast<std::size_t>(2 * (right - left + 1) + 2 * (bottom - top + 1) - 4);
+    EXPECT_EQ(on_outline, ring_samples) << shift;
+    // Inside: exactly the small square's inner ring (it is nearer than the large one by 1 > 0.5),
+    // 0.3 / 1.0 of the large one's size seen from 7 / 6 nearer: 0.35 of its width.
+    const int w = inner_right - inner_left + 1, h = inner_bottom - inner_top + 1;
+    EXPECT_NEAR(w, 0.35 * (right - left + 1), 2.0) << shift;
+    EXPECT_NEAR(h, 0.35 * (bottom - top + 1), 2.0) << shift;
+    EXPECT_EQ(inner.size(), static_cast<std::size_t>(2 * w + 2 * h - 4)) << shift;
+    for (const glm::ivec2& p : inner)
+      EXPECT_TRUE(p.x == inner_left || p.x == inner_right || p.y == inner_top || p.y == inner_bottom)
+          << p.x << "," << p.y << " shift " << shift;
+    // A jump larger than the squares' distance: the small square's outline is no contour.
+    const ContourMap flat = Renderer(scene, camera, options).contours(1.5);
+    EXPECT_EQ(flat.contour.size() / 2, ring_samples) << shift;
+    EXPECT_EQ(flat.coverage, map.coverage);
+  }
+  // A square larger than the view: covered everywhere, no contour at the border.
+  RenderMesh wall;
+  square(100.0, 0.0, wall);
+  Camera camera;
+  camera.eye = {0, 0, 5};
+  camera.aspect = 0.75;
+  const ContourMap map = Renderer(wall, camera, options).contours(0.5);
+  EXPECT_TRUE(map.contour.empty());
+  EXPECT_EQ(map.coverage.size(), 3u * 200);
+  EXPECT_THROW((void)Renderer(wall, camera, options).contours(0.0), std::invalid_argument);
+}
