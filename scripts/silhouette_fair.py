@@ -285,6 +285,7 @@ def summarize(rows):
 
 def plot(meshes, path):
     fig, axes = plt.subplots(2, len(meshes), figsize=(5.6 * len(meshes), 8.4), squeeze=False)
+    colours = dict(zip(KINDS, plt.rcParams["axes.prop_cycle"].by_key()["color"]))
     for col, m in enumerate(meshes):
         ax, bx = axes[0][col], axes[1][col]
         for kind, (_, _, style, text, _) in KINDS.items():
@@ -293,15 +294,16 @@ def plot(meshes, path):
             t = [p[0] for p in pts]
             e = np.array([p[1] for p in pts])
             ax.errorbar(t, e, yerr=[e - [p[2] for p in pts], [p[3] for p in pts] - e], fmt=style, ms=4, lw=1,
-                        elinewidth=0.5, capsize=2, label=text)
+                        elinewidth=0.5, capsize=2, label=text, color=colours[kind])
             if kind != "uniform":
-                bx.plot(t, [p[4] for p in pts], style, ms=4, lw=1, label=text)
+                bx.plot(t, [p[4] for p in pts], style, ms=4, lw=1, label=text, color=colours[kind])
         ref = m["reference"]
         ax.axhline(ref["error_px"], color="grey", lw=0.8, ls="--")
         ax.axvline(TARGET_SHARE * ref["triangles"], color="grey", lw=0.8, ls=":")
-        shares = ", ".join(f"{k} {100 * v:.0f} %" for k, v in m["share_by_rule"].items() if v is not None)
-        ax.set_title(f"{m['mesh']}: all visible contours, {VIEWS} views, {SAMPLES}x{SAMPLES} samples/pixel\n"
-                     f"share of L = 8's triangles at its error (dashed): {shares}", fontsize=7)
+        shares = [f"{k} {100 * v:.0f} %" for k, v in m["share_by_rule"].items() if v is not None]
+        ax.set_title(f"{m['mesh']}: all visible contours, {m['views']} views, {SAMPLES}x{SAMPLES} samples/pixel; "
+                     f"share of L = 8's\ntriangles at its error (dashed; dotted: 30 %): " + ", ".join(shares[:3]) +
+                     ",\n" + ", ".join(shares[3:]), fontsize=7)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("triangles on the whole mesh (mean over the views)")

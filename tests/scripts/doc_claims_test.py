@@ -2,7 +2,8 @@
 """Numbers the docs state about the project's own data, checked against that data, so that a
 claim cannot drift when the data changes: the mutants in the campaign (and in each round of it),
 the Verilated builds CI makes, the runs of the bad-input campaign, the points of the sweeps, the
-functional-coverage bins and the builds of the CPG variant matrix. A count in README.md or docs/
+functional-coverage bins, the builds of the CPG variant matrix, and the fair silhouette measurement
+(silhouette.md's tables and the figures other pages quote from silhouette/fair.json). A count in README.md or docs/
 of one of these is either checked here or not stated."""
 import argparse
 import ast
@@ -172,6 +173,103 @@ def cpg_matrix_builds(check):
           int(claim("docs/verification.md", r"r ∈ \{[\d, ]+\}, (\d+) builds\)")), variants)
 
 
+def stated_close(text: str, actual: float) -> bool:
+    """Whether a number as written ('49.6', '0.105', '102') rounds from `actual`."""
+    decimals = len(text.split(".")[1]) if "." in text else 0
+    return abs(float(text) - actual) <= 0.5 * 10 ** -decimals + 1e-9
+
+
+def silhouette_fair(check):
+    """docs/results/silhouette.md's fair-measurement tables against silhouette/fair.json, the
+    generated silhouette/fair.md against what the script makes of fair.json, and the figures other
+    pages quote from it."""
+    sys.path.insert(0, str(ROOT / "scripts"))
+    import silhouette_fair as fair
+    doc = json.loads((ROOT / "docs/results/silhouette/fair.json").read_text())
+    with tempfile.TemporaryDirectory() as tmp:
+        fair.write_markdown(doc, os.path.join(tmp, "fair.md"))
+        check("silhouette/fair.md regenerated from fair.json", True,
+              Path(tmp, "fair.md").read_text() == (ROOT / "docs/results/silhouette/fair.md").read_text())
+    meshes = {m["mesh"]: m for m in doc["meshes"]}
+    order = list(meshes)
+    text = section("docs/results/silhouette.md", "### Result").split("### Popping")[0]
+    rows = {r[0]: r[1:] for r in (re.split(r"\s*\|\s*", line.strip("| ")) for line in text.splitlines()
+                                  if line.startswith("| ") and not line.startswith("| rule"))}
+    names = {"screen-adaptive factors": "screen", "silhouette rule, PN patches": "silhouette",
+             "contour rule, PN patches": "contour", "contour rule, fractional_odd": "contour-fractional"}
+    bad = []
+    for label, kind in names.items():
+        for name, cell in zip(order, rows[label]):
+            m = meshes[name]
+            share = re.match(r"\**([\d.]+) %", cell).group(1)
+            if not stated_close(share, 100 * m["share_by_rule"][kind]):
+                bad.append(f"{label} {name} {share}")
+            views = re.search(r"\(([\d]+) / ([\d]+) / ([\d]+)", cell)
+            if views:
+                pv = m["share_per_view"][kind]
+                for got, key in zip(views.groups(), ("min", "median", "max")):
+                    if not stated_close(got, 100 * pv[key]):
+                        bad.append(f"{label} {name} per-view {key} {got}")
+    for label, kind in (("silhouette rule + blend: against PN; against its own limit", "silhouette-blend"),
+                        ("contour rule + blend: against PN; against its own limit", "contour-blend")):
+        for name, cell in zip(order, rows[label]):
+            m = meshes[name]
+            against, own = cell.split(";")
+            share = m["share_by_rule"][kind]
+            if (against.strip() == "never") != (share is None) or (share is not None and
+                                                                    not stated_close(against.strip(" %"), 100 * share)):
+                bad.append(f"{label} {name} against PN {against}")
+            if not stated_close(own.strip(" %"), 100 * m["share_against_own_limit"][kind]):
+                bad.append(f"{label} {name} own limit {own}")
+    for name, cell in zip(order, rows["uniform L = 8: triangles, mean contour error"]):
+        tri, err = re.match(r"([\d ]+), ([\d.]+) px", cell).groups()
+        if number(tri) != round(meshes[name]["reference"]["triangles"]) or \
+                not stated_close(err, meshes[name]["reference"]["error_px"]):
+            bad.append(f"L = 8 reference {name}")
+    check("silhouette.md result table against fair.json (cells that disagree)", [], bad)
+    text = section("docs/results/silhouette.md", "### Popping")
+    rows = {r[0]: r[1:] for r in (re.split(r"\s*\|\s*", line.strip("| ")) for line in text.splitlines()
+                                  if line.startswith("| ") and not line.startswith("| rule"))}
+    names.update({"silhouette rule + blend": "silhouette-blend", "contour rule + blend": "contour-blend"})
+    bad = []
+    for label, kind in names.items():
+        for name, cell in zip(order, rows[label]):
+            frames, jump = re.match(r"\**([\d]+) %\**, ([\d.]+) px", cell).groups()
+            p = doc["popping"][name][kind]
+            if not stated_close(frames, 100 * p["pop_frames_over_half_px"]) or not stated_close(jump, p["pop_max_px"]):
+                bad.append(f"{label} {name}")
+    check("silhouette.md popping table against fair.json (cells that disagree)", [], bad)
+    # Figures other pages quote.
+    w, s_, y = (meshes[n] for n in ("Wuson", "sphereWithHole", "sydney"))
+    lb = section("docs/results/load-balancing.md", "## 14.")
+    quoted = re.search(r"takes the silhouette rule ([\d.]+) % of L = 8's triangles on Wuson and ([\d.]+) % on\s+"
+                       r"sphereWithHole, the contour rule ([\d.]+) % and ([\d.]+) %, and on the figure sydney either "
+                       r"rule about all\s+of them \(([\d.]+) % and ([\d.]+) %\)", lb).groups()
+    actual = [w["share_by_rule"]["silhouette"], s_["share_by_rule"]["silhouette"], w["share_by_rule"]["contour"],
+              s_["share_by_rule"]["contour"], y["share_by_rule"]["silhouette"], y["share_by_rule"]["contour"]]
+    check("load-balancing.md §14 shares against fair.json", True,
+          all(stated_close(q, 100 * a) for q, a in zip(quoted, actual)))
+    tri = number(re.search(r"on Wuson ([\d ]+) triangles over 3 732 patches at T = 1/32 px", lb).group(1))
+    check("load-balancing.md §14 rule triangles at T = 1/32 on Wuson", tri,
+          round(w["summary"]["silhouette T=0.03125"]["triangles"]["mean"]))
+    pv = re.search(r"worst view 240 % of L = 8's triangles, where the\s+per-edge rule needs 447 %",
+                   (ROOT / "docs/patterns.md").read_text())
+    check("patterns.md sydney worst views against fair.json", True,
+          pv is not None and round(100 * y["share_per_view"]["contour"]["max"]) == 240 and
+          round(100 * y["share_per_view"]["silhouette"]["max"]) == 447)
+    images = (ROOT / "docs/images.md").read_text()
+    q = re.search(r"\(([\d.]+) against ([\d.]+) px\), and reaching L = 4's contour error takes the blend (\d+) % of "
+                  r"L = 4's\s+triangles on Wuson \((\d+) % on sydney\), the silhouette rule without the blend (\d+) %",
+                  images).groups()
+    ref4 = lambda m: m["summary"]["uniform L=4"]
+    share4 = lambda m, kind: fair.crossing([(c["triangles"]["mean"], c["error_px"]["mean"]) for c in m["summary"].values()
+                                            if c["kind"] == kind], ref4(m)["error_px"]["mean"]) / ref4(m)["triangles"]["mean"]
+    check("images.md blend against uniform L = 4 (fair.json)", True,
+          stated_close(q[0], w["summary"]["silhouette-blend T=0.25"]["error_px"]["mean"]) and
+          stated_close(q[1], ref4(w)["error_px"]["mean"]) and stated_close(q[2], 100 * share4(w, "silhouette-blend")) and
+          stated_close(q[3], 100 * share4(y, "silhouette-blend")) and stated_close(q[4], 100 * share4(w, "silhouette")))
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--tessim", required=True)
@@ -197,6 +295,7 @@ def main() -> int:
     sweep_points(check)
     coverage_bins(check, a.tessim)
     cpg_matrix_builds(check)
+    silhouette_fair(check)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
