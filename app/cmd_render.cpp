@@ -400,7 +400,8 @@ void run_render_path(const RenderArgs& args, const glm::ivec2& size) {
   // The frames' cameras stand in for --camera and for --silhouette camera's eye: the pattern is
   // parsed with the first, and each frame then takes its own.
   PatternOptions pattern = args.pattern;
-  if (pattern.adaptive.given() && pattern.adaptive.camera.empty()) pattern.adaptive.camera = camera_text(cameras[0].tessellation);
+  if (pattern.adaptive.given() && pattern.adaptive.camera.empty())
+    pattern.adaptive.camera = camera_text(cameras[0].tessellation);
   bool blend_follows = false;
   if (!pattern.adaptive.given() && pattern.silhouette.starts_with("camera")) {
     const glm::dvec3& e = cameras[0].tessellation.eye;
@@ -431,7 +432,8 @@ void run_render_path(const RenderArgs& args, const glm::ivec2& size) {
   check_contour_options(args);
   render::UpAxis up = render::UpAxis::Y;
   if (args.up == "z" || args.up == "Z") up = render::UpAxis::Z;
-  else if (args.up != "y" && args.up != "Y") throw InputError("command line", "--up", "'" + args.up + "' is not one of y, z");
+  else if (args.up != "y" && args.up != "Y")
+    throw InputError("command line", "--up", "'" + args.up + "' is not one of y, z");
   std::vector<OutputPath> outputs;
   if (!args.contours.empty()) outputs.push_back({"--contours", args.contours});
   if (!args.output.empty()) outputs.push_back({"-o", frame_name(args.output, 0)});

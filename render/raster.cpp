@@ -390,7 +390,8 @@ struct Renderer::Impl {
           const bool covered = x < sample_width && std::isfinite(at(x, y));
           if (covered && run_begin < 0) run_begin = x;
           if (!covered && run_begin >= 0) {
-            map.coverage.insert(map.coverage.end(), {static_cast<std::uint32_t>(y), static_cast<std::uint32_t>(run_begin),
+            map.coverage.insert(map.coverage.end(), {static_cast<std::uint32_t>(y),
+                                                     static_cast<std::uint32_t>(run_begin),
                                                      static_cast<std::uint32_t>(x)});
             run_begin = -1;
           }
@@ -401,7 +402,8 @@ struct Renderer::Impl {
                                (x + 1 < sample_width && at(x + 1, y) - d > depth_jump) ||
                                (y > 0 && at(x, y - 1) - d > depth_jump) ||
                                (y + 1 < sample_height && at(x, y + 1) - d > depth_jump);
-          if (contour) map.contour.insert(map.contour.end(), {static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)});
+          if (contour)
+            map.contour.insert(map.contour.end(), {static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)});
         }
       }
     }

@@ -96,7 +96,9 @@ TEST(Annotate, TextInksOnlyItsBox) {
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       const bool inside = x >= 10 && x < 10 + text_width("Aq1") && y >= 5 && y < 5 + text_line_height();
-      if (!inside) EXPECT_EQ(image.pixel(x, y)[0], 1.0f) << x << "," << y;
+      if (!inside) {
+        EXPECT_EQ(image.pixel(x, y)[0], 1.0f) << x << "," << y;
+      }
     }
   EXPECT_GT(inked(image, white), 30u);
   Image doubled(100, 40);

@@ -404,7 +404,8 @@ TEST(Raster, ContoursAreTheOutlineAndTheOccludingEdges) {
     for (std::size_t i = 0; i < map.coverage.size(); i += 3) {
       const int y = static_cast<int>(map.coverage[i]);
       if (top < 0) top = y;
-      ASSERT_LT(bottom, y) << "x " << map.coverage[i + 1] << ".." << map.coverage[i + 2] << " after " << left << ".." << right << " shift " << shift;
+      ASSERT_LT(bottom, y) << "x " << map.coverage[i + 1] << ".." << map.coverage[i + 2] << " after " << left
+                           << ".." << right << " shift " << shift;
       bottom = y;
       left = static_cast<int>(map.coverage[i + 1]);
       right = static_cast<int>(map.coverage[i + 2]) - 1;
