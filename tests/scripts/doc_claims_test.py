@@ -2,8 +2,10 @@
 """Numbers the docs state about the project's own data, checked against that data, so that a
 claim cannot drift when the data changes: the mutants in the campaign (and in each round of it),
 the Verilated builds CI makes, the runs of the bad-input campaign, the points of the sweeps, the
-functional-coverage bins, the builds of the CPG variant matrix, and the fair silhouette measurement
-(silhouette.md's tables and the figures other pages quote from silhouette/fair.json). A count in README.md or docs/
+functional-coverage bins, the builds of the CPG variant matrix, the fair silhouette measurement
+(silhouette.md's tables and the figures other pages quote from silhouette/fair.json), and the
+load-balancing study's answer, §4 and §12 figures against its records and generated tables.
+A count in README.md or docs/
 of one of these is either checked here or not stated."""
 import argparse
 import ast
@@ -270,6 +272,71 @@ def silhouette_fair(check):
           stated_close(q[3], 100 * share4(y, "silhouette-blend")) and stated_close(q[4], 100 * share4(w, "silhouette")))
 
 
+def table_rows(path: str, heading: str) -> dict:
+    """The rows of the first table under `heading` of a generated tables.md, by first cell."""
+    text = (ROOT / path).read_text()
+    body = text[text.index(heading):]
+    rows, started = {}, False
+    for line in body.splitlines()[1:]:
+        if line.startswith("|"):
+            started = True
+            cells = [c.strip(" *") for c in line.strip("|").split("|")]
+            rows[cells[0]] = cells[1:]
+        elif started:
+            break
+    return rows
+
+
+def load_balancing_claims(check):
+    """Figures of load-balancing.md's answer, §3/§4 and §12 against the study's data: the
+    whole-unit records of full/results.csv, the generated full/tables.md and tables.md, and the
+    generated stpn_table.md."""
+    lb = (ROOT / "docs/results/load-balancing.md").read_text()
+    per_mtr = table_rows("docs/results/full/tables.md", "### Throughput per million transistors")
+    n1, n2, n3 = (per_mtr["8"][i] for i in range(3))
+    quoted = re.search(r"\(([\d.]+) vertices/cycle per\s+million transistors against ([\d.]+) for N = 1 and "
+                       r"([\d.]+) for N = 3;", lb).groups()
+    check("answer: vertices/cycle per Mtr. at K = 8, N = 2 / 1 / 3 (full/tables.md)", True,
+          all(stated_close(q, float(a)) for q, a in zip(quoted, (n2, n1, n3))))
+    small = table_rows("docs/results/tables.md", "### Throughput per million transistors")
+    q = re.search(r"at N = 4 for K = 4 \(([\d.]+), N = 3\s+within 0.5 %\)", lb).group(1)
+    check("§4: small set, N = 4 at K = 4 (tables.md)", True,
+          stated_close(q, float(small["4"][3])) and float(small["4"][2]) >= 0.995 * float(small["4"][3]))
+    unit = {}
+    with open(ROOT / "docs/results/full/results.csv") as f:
+        for r in csv.DictReader(f):
+            if r["mesh"].endswith("Wuson.ply") and r["tess_factor"] == "16" and r["int_latency"] == "1" and \
+                    r["normals"] == "quadratic" and r["cost_unit_transistors"]:
+                unit.setdefault((int(r["int_blocks"]), int(r["te_contexts"])),
+                                (int(r["cost_unit_transistors"]) / 1e6, int(r["cost_unit_depth"])))
+    v2, v4 = unit[(2, 2)], unit[(2, 4)]
+    q = re.search(r"costs ([\d.]+) M\s+instead of ([\d.]+) M transistors \(−([\d.]+) %, logic depth (\d+) instead "
+                  r"of (\d+);", lb).groups()
+    check("answer: N = 2 with V = 2 against V = 4 (full/results.csv)", True,
+          stated_close(q[0], v2[0]) and stated_close(q[1], v4[0]) and stated_close(q[2], 100 * (1 - v2[0] / v4[0]))
+          and int(q[3]) == v2[1] and int(q[4]) == v4[1])
+    q = re.search(r"which grows from (\d+) at N = 1 to (\d+) at N = 6", lb).groups()
+    check("answer: clock depth at N = 1 and N = 6, V = 4 (full/results.csv)", [int(x) for x in q],
+          [unit[(1, 4)][1], unit[(6, 4)][1]])
+    q = re.search(r"unit is ([\d.]+)–([\d.]+) M\s+transistors cheaper for N = 1…3, and (\d+)–(\d+) levels deep "
+                  r"instead of (\d+)–(\d+)", lb).groups()
+    saving = [unit[(n, 4)][0] - unit[(n, 2)][0] for n in (1, 2, 3)]
+    check("§4: V = 2 against V = 4 for N = 1…3 (full/results.csv)", True,
+          stated_close(q[0], min(saving)) and stated_close(q[1], max(saving)) and
+          [int(x) for x in q[2:]] == [unit[(1, 2)][1], unit[(3, 2)][1], unit[(1, 4)][1], unit[(3, 4)][1]])
+    steps = [unit[(n + 1, 4)][0] - unit[(n, 4)][0] for n in range(2, 6)]
+    further = re.findall(r"(?:every further block adds|each added block costs) about ([\d.]+) M", lb)
+    check("statements of what a further INT block adds (answer and §4)", 2, len(further))
+    for q in further:
+        check("answer and §4: what a further INT block adds (full/results.csv)", True,
+              all(stated_close(q, x) for x in steps))
+    section12 = section("docs/results/load-balancing.md", "## 12.")
+    generated = [line for line in (ROOT / "docs/results/stpn_table.md").read_text().splitlines()
+                 if line.startswith("| ")]
+    check("§12 tables lines missing from the generated stpn_table.md", [],
+          [line for line in generated if line not in section12.splitlines()])
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--tessim", required=True)
@@ -296,6 +363,7 @@ def main() -> int:
     coverage_bins(check, a.tessim)
     cpg_matrix_builds(check)
     silhouette_fair(check)
+    load_balancing_claims(check)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
