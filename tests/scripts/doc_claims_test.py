@@ -325,7 +325,7 @@ def load_balancing_claims(check):
           stated_close(q[0], min(saving)) and stated_close(q[1], max(saving)) and
           [int(x) for x in q[2:]] == [unit[(1, 2)][1], unit[(3, 2)][1], unit[(1, 4)][1], unit[(3, 4)][1]])
     steps = [unit[(n + 1, 4)][0] - unit[(n, 4)][0] for n in range(2, 6)]
-    further = re.findall(r"(?:every further block adds|each added block costs) about ([\d.]+) M", lb)
+    further = re.findall(r"(?:every further block adds|each added block costs)\s+about ([\d.]+) M", lb)
     check("statements of what a further INT block adds (answer and §4)", 2, len(further))
     for q in further:
         check("answer and §4: what a further INT block adds (full/results.csv)", True,
