@@ -4,7 +4,8 @@ claim cannot drift when the data changes: the mutants in the campaign (and in ea
 the Verilated builds CI makes, the runs of the bad-input campaign, the points of the sweeps, the
 functional-coverage bins, the builds of the CPG variant matrix, the fair silhouette measurement
 (silhouette.md's tables and the figures other pages quote from silhouette/fair.json), and the
-load-balancing study's answer, §4 and §12 figures against its records and generated tables.
+load-balancing study's answer, §4 and §12 figures against its records and generated tables, and
+§11's targets against the commands it quotes.
 A count in README.md or docs/
 of one of these is either checked here or not stated."""
 import argparse
@@ -337,6 +338,45 @@ def load_balancing_claims(check):
           [line for line in generated if line not in section12.splitlines()])
 
 
+def sim_stats(tessim: str, args: list) -> dict:
+    with tempfile.TemporaryDirectory() as tmp:
+        stats = os.path.join(tmp, "s.json")
+        subprocess.run([tessim, "sim"] + args + ["--stats", stats], check=True, capture_output=True)
+        return json.loads(Path(stats).read_text())
+
+
+def cpg_targets(check, tessim):
+    """§11's targets, from the very commands the section quotes (each runs in well under a
+    second), on Wuson as quoted and on sphereWithHole with the same flags."""
+    text = section("docs/results/load-balancing.md", "## 11.")
+    spheres = "/usr/share/assimp/models/STL/sphereWithHole.stl"
+    commands = re.findall(r"`tessim sim (/usr/share/assimp/models/PLY/Wuson.ply [^`]+)`", text)
+    radix = next(c for c in commands if "--cpg-digit-bits 4" in c).split()
+    fast = next(c for c in commands if "--gpe-cycles 1" in c).split()
+    sequential = [a for i, a in enumerate(radix) if a != "--cpg-digit-bits" and radix[i - 1] != "--cpg-digit-bits"]
+    on_sphere = lambda args: [spheres] + args[1:]
+    reflect = lambda args: [a if a != "24" else "8" for a in args] + ["--normals", "reflect"]
+    q = re.search(r"runs at ([\d.]+) cycles per vertex on sphereWithHole and ([\d.]+) on Wuson, ([\d.]+) % and\s+"
+                  r"([\d.]+) % of the GPE's rate .*?, against ([\d.]+) and ([\d.]+) with\s+the sequential CPG", text,
+                  re.S).groups()
+    s_r, w_r = sim_stats(tessim, on_sphere(radix)), sim_stats(tessim, radix)
+    s_s, w_s = sim_stats(tessim, on_sphere(sequential)), sim_stats(tessim, sequential)
+    actual = [s_r["cycles_per_vertex"], w_r["cycles_per_vertex"], 800 / s_r["cycles_per_vertex"],
+              800 / w_r["cycles_per_vertex"], s_s["cycles_per_vertex"], w_s["cycles_per_vertex"]]
+    check("§11: one lane of 4 bits at L = 4, N = 2, K = 8 (quoted command)", True,
+          all(stated_close(a, b) for a, b in zip(q, actual)))
+    q = re.search(r"the unit delivers ([\d.]+)\s+vertices per cycle on sphereWithHole and ([\d.]+) on Wuson at L = 4 "
+                  r"\(quadratic normals;\s+reflect: three lanes of 8 bits, C = 13, ([\d.]+) and ([\d.]+)\)", text).groups()
+    w_f = sim_stats(tessim, fast)
+    actual = [sim_stats(tessim, on_sphere(fast))["throughput"], w_f["throughput"],
+              sim_stats(tessim, on_sphere(reflect(fast)))["throughput"], sim_stats(tessim, reflect(fast))["throughput"]]
+    check("§11: N = 14 with three lanes of 24 (8) bits at K = 1 (quoted command)", True,
+          all(stated_close(a, b) for a, b in zip(q, actual)))
+    q = re.search(r"then the same flags to `tessim cosim`\): ([\d ]+) cycles, ([\d ]+) vertices", text).groups()
+    check("§11: cycles and vertices of the fast configuration on Wuson", [number(x) for x in q],
+          [w_f["cycles"], w_f["vertices_out"]])
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--tessim", required=True)
@@ -364,6 +404,7 @@ def main() -> int:
     cpg_matrix_builds(check)
     silhouette_fair(check)
     load_balancing_claims(check)
+    cpg_targets(check, a.tessim)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
