@@ -5,7 +5,7 @@ the Verilated builds CI makes, the runs of the bad-input campaign, the points of
 functional-coverage bins, the builds of the CPG variant matrix, the fair silhouette measurement
 (silhouette.md's tables and the figures other pages quote from silhouette/fair.json), and the
 load-balancing study's answer, §4 and §12 figures against its records and generated tables, and
-§11's targets against the commands it quotes.
+§10's buffer table and §11's targets against the commands they quote.
 A count in README.md or docs/
 of one of these is either checked here or not stated."""
 import argparse
@@ -377,6 +377,34 @@ def cpg_targets(check, tessim):
           [w_f["cycles"], w_f["vertices_out"]])
 
 
+def buffer_rows(check, tessim):
+    """§10's table of control-point buffers (and the N = 2 figures after it), rerun with the
+    command the section gives (each run a fraction of a second)."""
+    text = section("docs/results/load-balancing.md", "## 10.")
+    near, middle = re.search(r"--camera (eye=[\d.,-]+,target=[\d.,-]+)` or\s+`(eye=[\d.,-]+,target=[\d.,-]+)`",
+                             text).groups()
+    flags = "--pixels-per-segment 6 --partitioning fractional_odd --normals reflect --gpe-cycles 2".split()
+    check("§10: the buffer runs' flags as quoted", True, "`--pixels-per-segment 6 --partitioning fractional_odd\n  "
+          "--normals reflect --gpe-cycles 2 --int-blocks 4 --cp-buffers Nb --stats s.json`" in text)
+    header = re.search(r"\| Nb \| ([\d |]+)\| full-buffer bound \|", text).group(1)
+    buffers = [int(x) for x in header.split("|") if x.strip()]
+    run = lambda camera, n, blocks: sim_stats(tessim, ["/usr/share/assimp/models/PLY/Wuson.ply", "--adaptive", "screen",
+                                                       "--camera", camera] + flags +
+                                              ["--int-blocks", str(blocks), "--cp-buffers", str(n)])
+    bad = []
+    for label, camera in (("nearest view", near), ("middle view", middle)):
+        cells = re.search(rf"\| {label}, cycles per vertex \| ([\d. |]+)\|\n", text).group(1).split("|")
+        cells = [c.strip() for c in cells if c.strip()]
+        stats = [run(camera, n, 4) for n in buffers]
+        actual = [st["cycles_per_vertex"] for st in stats] + [stats[0]["analytic"]["varying"]["full_buffer_cycles_per_vertex"]]
+        bad += [f"{label} column {i}" for i, (c, a) in enumerate(zip(cells, actual)) if not stated_close(c, a)]
+    q = re.search(r"\(N = 2: ([\d.]+)\s+to ([\d.]+) against ([\d.]+)\)", text).groups()
+    two, eight = run(middle, 2, 2), run(middle, 8, 2)
+    actual = [two["cycles_per_vertex"], eight["cycles_per_vertex"], two["analytic"]["varying"]["full_buffer_cycles_per_vertex"]]
+    bad += [f"N = 2 figure {i}" for i, (c, a) in enumerate(zip(q, actual)) if not stated_close(c, a)]
+    check("§10: control-point buffer table against its runs (cells that disagree)", [], bad)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--tessim", required=True)
@@ -405,6 +433,7 @@ def main() -> int:
     silhouette_fair(check)
     load_balancing_claims(check)
     cpg_targets(check, a.tessim)
+    buffer_rows(check, a.tessim)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
