@@ -5,7 +5,7 @@ the Verilated builds CI makes, the runs of the bad-input campaign, the points of
 functional-coverage bins, the builds of the CPG variant matrix, the fair silhouette measurement
 (silhouette.md's tables and the figures other pages quote from silhouette/fair.json), and the
 load-balancing study's answer, §4 and §12 figures against its records and generated tables, and
-§10's buffer table and §11's targets against the commands they quote.
+§10's buffer table, §11's targets and §13's copies against the commands they quote.
 A count in README.md or docs/
 of one of these is either checked here or not stated."""
 import argparse
@@ -405,6 +405,47 @@ def buffer_rows(check, tessim):
     check("§10: control-point buffer table against its runs (cells that disagree)", [], bad)
 
 
+def copies_rows(check, tessim):
+    """§13's table of CPG copies on Wuson's adaptive views and its fast-GE figures, rerun with the
+    commands the section gives (about 40 runs of a fraction of a second)."""
+    text = section("docs/results/load-balancing.md", "## 13.")
+    wuson = "/usr/share/assimp/models/PLY/Wuson.ply"
+    target = re.search(r"--camera eye=[\d.,-]+,(target=[\d.,-]+)`", text).group(1)
+    views = dict(zip(("nearest", "middle", "farthest"),
+                     [f"{e},{target}" for e in re.findall(r"(eye=[\d.-]+,[\d.-]+,[\d.-]+),(?:target|…)", text)[:3]]))
+    base = "--pixels-per-segment 6 --partitioning integer --int-blocks 2 --gpe-cycles 8 --cp-buffers 4".split()
+    check("§13: the copies runs' flags as quoted", True, " ".join(base[:4]) in " ".join(text.split()))
+    copies = [int(x) for x in re.search(r"\| CPG \| Mc = (\d+) \| (\d+) \| (\d+) \| (\d+) \|", text).groups()]
+    bad = []
+    rows = re.findall(r"\| (\w+) view: (\d)x(\d+)(?: \(sequential\))? \| ([^\n]+) \|\n", text)
+    check("§13: rows of the CPG copies table", 7, len(rows))
+    for view, lanes, bits, cells in rows:
+        stated = [c.strip(" *") for c in cells.split("|")]
+        for mc, c in zip(copies, stated):
+            st = sim_stats(tessim, [wuson, "--adaptive", "screen", "--camera", views[view]] + base +
+                           ["--cpg-lanes", lanes, "--cpg-digit-bits", bits, "--cpg-copies", str(mc)])
+            if not stated_close(c, st["cycles_per_vertex"]):
+                bad.append(f"{view} {lanes}x{bits} Mc = {mc}: {c} against {st['cycles_per_vertex']:.4f}")
+    check("§13: CPG copies table against its runs (cells that disagree)", [], bad)
+    fast = lambda L, bits, mc, nb=8: sim_stats(tessim, [wuson, "-L", str(L), "--int-blocks", "14", "--te-contexts", "16",
+                                                       "--cp-buffers", str(nb), "--gpe-cycles", "1", "--cpg-lanes", "3",
+                                                       "--cpg-digit-bits", str(bits), "--cpg-copies", str(mc)])["throughput"]
+    q = re.search(r"delivers on Wuson ([\d.]+), ([\d.]+) and ([\d.]+) vertices\s+per cycle at L = 1, 2 and 3 with five "
+                  r"copies of 3x24 .*?\s+([\d.]+) / ([\d.]+) / ([\d.]+) with ten copies of the shallow 3x4", text, re.S).groups()
+    actual = [fast(L, 24, 5) for L in (1, 2, 3)] + [fast(L, 4, 10) for L in (1, 2, 3)]
+    check("§13: fast GE on Wuson, five copies of 3x24 and ten of 3x4 (quoted command)", True,
+          all(stated_close(a, b) for a, b in zip(q, actual)))
+    q = re.search(r"two buffers hold Wuson to ([\d.]+) vertices per cycle and three or more give ([\d.]+)", text).groups()
+    check("§13: five copies of 3x24 at L = 1 with two and three buffers", True,
+          stated_close(q[0], fast(1, 24, 5, 2)) and stated_close(q[1], fast(1, 24, 5, 3)))
+    q = re.search(r"four copies of 1x2 give ([\d.]+), ([\d.]+)\s+and ([\d.]+) cycles per vertex with 2, 4 and 8 buffers",
+                  text).groups()
+    far = lambda nb: sim_stats(tessim, [wuson, "--adaptive", "screen", "--camera", views["farthest"]] + base[:-1] +
+                               [str(nb), "--cpg-lanes", "1", "--cpg-digit-bits", "2", "--cpg-copies", "4"])["cycles_per_vertex"]
+    check("§13: farthest view, four copies of 1x2 with 2, 4 and 8 buffers", True,
+          all(stated_close(a, far(nb)) for a, nb in zip(q, (2, 4, 8))))
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--tessim", required=True)
@@ -434,6 +475,7 @@ def main() -> int:
     load_balancing_claims(check)
     cpg_targets(check, a.tessim)
     buffer_rows(check, a.tessim)
+    copies_rows(check, a.tessim)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
