@@ -137,6 +137,22 @@ int system_threads(const std::string& text, int chunks, int units) {
 
 void run_sim(const SimArgs& a, const ConfigFlags& flags) {
   sim::UnitConfig cfg = flags.config();
+  if (is_scene_file(a.mesh)) {
+    // A scene's draws carry their own patterns, and its frames are summarized, not traced.
+    const std::pair<bool, const char*> refused[] = {
+        {flags.overrides().contains("tess_factor"), "-L (each draw of a scene gives its own L)"},
+        {a.pattern.adaptive.given(), "--adaptive (each draw of a scene gives its own pattern)"},
+        {!a.pattern.partitioning.empty(), "--partitioning (each draw of a scene gives its own pattern)"},
+        {!a.pattern.outer.empty() || !a.pattern.inner.empty(), "--outer/--inner (each draw gives its own pattern)"},
+        {a.pattern.silhouette_given(), "--silhouette"},
+        {a.pattern.displace.kind_option && a.pattern.displace.kind_option->count() > 0, "--displace"},
+        {!a.output.empty(), "-o"}, {!a.trace.empty(), "--trace"}, {a.schedule, "--schedule"}, {a.errors, "--errors"},
+        {a.chunks != "1", "--chunks"}};
+    for (const auto& [given, what] : refused)
+      if (given) throw InputError("command line", what, "is not taken with a scene (" + a.mesh + ")");
+    run_sim_scene(a.mesh, a.stats, cfg, a.quiet);
+    return;
+  }
   int chunks = parse_chunks(a.chunks);
   // A trace and the schedule watch one unit cycle by cycle: there is no one unit to watch.
   if (chunks != 1 && !a.trace.empty())
@@ -355,7 +371,10 @@ void register_sim(CLI::App& app) {
   auto args = std::make_shared<SimArgs>();
   CLI::App* sub = app.add_subcommand(
       "sim", "Run a mesh through the cycle-level model of the unit and its geometry engine");
-  sub->add_option("mesh", args->mesh, "input mesh (OBJ, PLY, STL, OFF, ...)")->capture_default_str();
+  sub->add_option("mesh", args->mesh,
+                  "input mesh (OBJ, PLY, STL, OFF, ...), or a scene NAME.scene.json: every frame of its draws "
+                  "(docs/scenes.md)")
+      ->capture_default_str();
   auto flags = std::make_shared<ConfigFlags>(*sub);  // --config and every parameter (sim/config/params.hpp)
   sub->add_option("--stats", args->stats, "write the statistics as JSON");
   sub->add_option("--trace", args->trace,

@@ -216,6 +216,9 @@ void register_info(CLI::App& app);
 void register_tessellate(CLI::App& app);
 void register_render(CLI::App& app);
 void register_sim(CLI::App& app);
+// tessim sim SCENE.scene.json (app/cmd_sim_scene.cpp): whether the positional names a scene, and the run.
+bool is_scene_file(const std::string& path);
+void run_sim_scene(const std::string& path, const std::string& stats, const sim::UnitConfig& cfg, bool quiet);
 void register_bench(CLI::App& app);
 void register_schema(CLI::App& app);
 void register_pattern(CLI::App& app);
