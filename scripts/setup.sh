@@ -36,6 +36,7 @@ FULL_PACKAGES=(
   opensta                       # OpenSTA: static timing of the cell-mapped netlists
   iverilog                      # 4-state simulation: the RTL's X checks fire on an X (tests/rtl/x_check_test.sh)
   python3-matplotlib python3-numpy  # plots (run with /usr/bin/python3)
+  python3-scipy                 # scripts/silhouette_fair.py: nearest contour samples (k-d tree)
   python3-distributed           # sweep.py --scheduler: points on a Dask cluster
   clang libclang-rt-14-dev      # libFuzzer targets (fuzz/, scripts/fuzz.sh)
   llvm lld                      # their toolchain: llvm-symbolizer for sanitizer reports, the LLVM binutils CMake picks

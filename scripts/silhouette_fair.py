@@ -50,7 +50,6 @@ import tempfile
 import time
 
 import numpy as np
-from scipy.spatial import cKDTree
 import matplotlib
 
 matplotlib.use("Agg")
@@ -161,6 +160,8 @@ def coverage_mask(runs):
 
 def contour_distance(a, b):
     """Every contour point's distance to the other contour, both ways: (mean, 95th percentile, max)."""
+    from scipy.spatial import cKDTree  # here: the replot and the tables need no SciPy
+
     if len(a) == 0 or len(b) == 0:
         return float("inf"), float("inf"), float("inf")
     d = np.concatenate([cKDTree(b).query(a)[0], cKDTree(a).query(b)[0]])

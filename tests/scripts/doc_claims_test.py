@@ -5,7 +5,8 @@ the Verilated builds CI makes, the runs of the bad-input campaign, the points of
 functional-coverage bins, the builds of the CPG variant matrix, the fair silhouette measurement
 (silhouette.md's tables and the figures other pages quote from silhouette/fair.json), and the
 load-balancing study's answer, §4 and §12 figures against its records and generated tables, and
-§10's buffer table, §11's targets and §13's copies against the commands they quote.
+§10's buffer table, §11's targets and §13's copies against the commands they quote, and
+scenes.md's sizing against docs/results/scenes/study.json.
 A count in README.md or docs/
 of one of these is either checked here or not stated."""
 import argparse
@@ -446,6 +447,41 @@ def copies_rows(check, tessim):
           all(stated_close(a, far(nb)) for a, nb in zip(q, (2, 4, 8))))
 
 
+def scene_claims(check):
+    """docs/scenes.md's sizing paragraph against docs/results/scenes/study.json."""
+    doc = json.loads((ROOT / "docs/results/scenes/study.json").read_text())
+    text = " ".join(section("docs/scenes.md", "## How the unit is sized").split())
+    pick = {(p["scene"], p["gpe_cycles"]): p for p in doc["picks"]}
+    rows = lambda scene, k: [r for r in doc["rows"] if r["scene"] == scene and r["gpe_cycles"] == k]
+    herd8, herd4, fig8, fig4 = pick[("herd", 8)], pick[("herd", 4)], pick[("figures", 8)], pick[("figures", 4)]
+    q = re.search(r"The herd puts ([\d ]+) tessellated vertices .*? gives the worst frame in ([\d.]+) ms, ([\d.]+) frames "
+                  r"per second, and 60 would take a (\d+) MHz clock; at K = 4, ([\d.]+) frames per second, and (\d+) MHz",
+                  text).groups()
+    check("scenes.md: the herd's vertices and its fastest units (study.json)", True,
+          number(q[0]) == rows("herd", 8)[0]["tessellated_vertices"] and stated_close(q[1], herd8["worst_ms"]) and
+          stated_close(q[2], herd8["fps"]) and stated_close(q[3], herd8["clock_mhz_for_60fps"]) and
+          stated_close(q[4], herd4["fps"]) and stated_close(q[5], herd4["clock_mhz_for_60fps"]) and
+          not herd8["meets_60fps"] and not herd4["meets_60fps"])
+    q = re.search(r"At K = 8 the geometry engine alone needs ([\d.]+) M cycles for them", text).group(1)
+    check("scenes.md: the geometry engine's cycles for the herd at K = 8", True,
+          stated_close(q, 8 * rows("herd", 8)[0]["tessellated_vertices"] / 1e6))
+    default = next(r for r in rows("herd", 8) if r["config"] == "N=2 1x1 Λ=1 Nb=2")
+    q = re.search(r"it needs ([\d ]+) cycles for the herd's worst frame, ([\d.]+) frames per second at its ([\d.]+) MHz",
+                  text).groups()
+    check("scenes.md: the default unit on the herd (study.json)", True,
+          number(q[0]) == default["worst_cycles"] and stated_close(q[1], default["fps"]) and
+          stated_close(q[2], default["clock_mhz"]))
+    q = re.search(r"The figures scene \(([\d ]+) tessellated vertices\) is sustained at 60 frames per second by the cheapest "
+                  r"unit with registered CPG products at Λ = 3 \(([\d.]+) mm², ([\d.]+) MHz\), at either K", text).groups()
+    check("scenes.md: the figures scene's pick (study.json)", True,
+          number(q[0]) == rows("figures", 8)[0]["tessellated_vertices"] and fig8["meets_60fps"] and fig4["meets_60fps"]
+          and fig8["pick"] == fig4["pick"] and "reg Λ=3" in fig8["pick"] and stated_close(q[1], fig8["area_mm2"])
+          and stated_close(q[2], fig8["clock_mhz"]))
+    q = re.search(r"idles in the untessellated draws for at most ([\d.]+) % of the herd's frames", text).group(1)
+    check("scenes.md: the unit's idle share on the herd (study.json)", True,
+          stated_close(q, 100 * max(r["unit_idle_share"] for r in doc["rows"] if r["scene"] == "herd")))
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--tessim", required=True)
@@ -476,6 +512,7 @@ def main() -> int:
     cpg_targets(check, a.tessim)
     buffer_rows(check, a.tessim)
     copies_rows(check, a.tessim)
+    scene_claims(check)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
