@@ -4,9 +4,9 @@
 
 Presets:
 - herd: a flat ground (a cube flattened to a slab, not tessellated), a herd of Wusons on a grid
-  going away from the camera, the nearest with screen-adaptive factors and the rest uniform (L = 8
-  for the first row, L = 4 behind), sphereWithHole blobs with the contour rule, and two spiders
-  as untessellated props; the camera walks along the herd.
+  going away from the camera, the front row with screen-adaptive factors and the rest uniform
+  (L = 8 for the second row, L = 4 behind), sphereWithHole blobs with the contour rule, and two
+  spiders as untessellated props; the camera walks in towards the herd.
 - figures: sydney figures in a circle, uniform L = 6, with an untessellated ground and boxes; the
   camera circles them at two heights.
 
@@ -35,13 +35,13 @@ def herd(args):
     for r in range(args.rows):
         for c in range(args.columns):
             inst = {"translate": [4.0 * (c - (args.columns - 1) / 2), 0.0, -5.0 * r], "rotate_y_deg": 25.0 * c}
-            if r == 0 and c == args.columns // 2:
+            if r == 0:
                 near.append(inst)
             else:
-                rows.setdefault(8 if r == 0 else 4, []).append(inst)
+                rows.setdefault(8 if r == 1 else 4, []).append(inst)
     draws = [ground(12.0 * max(args.rows, args.columns), 0.0)]
-    draws.append({"name": "Wuson, nearest (screen-adaptive)", "mesh": f"{MODELS}/PLY/Wuson.ply",
-                  "tessellation": "adaptive", "rule": "screen", "pixels_per_segment": 8, "instances": near})
+    draws.append({"name": "Wuson, front row (screen-adaptive)", "mesh": f"{MODELS}/PLY/Wuson.ply",
+                  "tessellation": "adaptive", "rule": "screen", "pixels_per_segment": 6, "instances": near})
     for L, instances in sorted(rows.items(), reverse=True):
         if instances:
             draws.append({"name": f"Wuson, uniform L = {L}", "mesh": f"{MODELS}/PLY/Wuson.ply", "tessellation": "uniform",
@@ -53,8 +53,9 @@ def herd(args):
                   "instances": [{"translate": [x, 0.4, -2.5], "scale": 0.01} for x in (-2.0, 2.0)]})
     cameras = []
     for k in range(args.frames):
+        # Walking in from 20 units to 4 in front of the first row: its factors grow along the path.
         s = k / max(1, args.frames - 1)
-        eye = [-3.0 + 6.0 * s, 2.5, 9.0 - 3.0 * s]
+        eye = [-3.0 + 4.0 * s, 2.5, 20.0 - 16.0 * s]
         cameras.append({"eye": eye, "target": [0.0, 0.8, -2.5 * (args.rows - 1)], "fov_deg": 50})
     return draws, cameras
 

@@ -8,8 +8,9 @@ clock), and reports the worst frame of the camera path in cycles, in ms at the c
 own clock, and the frame rate it sustains; then, per scene and K, the smallest unit (area) that
 sustains 60 frames per second, or the fastest when none does.
 
-Writes OUT/study.csv (a row per scene, K and configuration), OUT/study.json and OUT/study.md
-(generated tables). About two minutes on two cores.
+Writes OUT/study.csv (a row per scene, K and configuration), OUT/study.json (with every frame's
+cycles), OUT/study.md (generated tables) and OUT/frames.png (frame time along the path). About a
+minute on two cores.
 
 Usage: scene_study.py --tessim build/bin/tessim [--out docs/results/scenes] [--jobs 2] [--check]
   --check: rebuild study.md from study.json and fail when it differs from the committed one.
@@ -22,6 +23,11 @@ import os
 import subprocess
 import sys
 import tempfile
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = ["herd", "figures"]
@@ -53,7 +59,9 @@ def run(tessim, scene, config, k, scratch):
     return {"scene": scene, "gpe_cycles": k, "config": label(config), "area_mm2": float(config["area_mm2"]),
             "clock_mhz": mhz, "frames": len(doc["frames"]), "worst_cycles": worst, "mean_cycles": round(mean),
             "worst_ms": worst / (mhz * 1e3), "fps": mhz * 1e6 / worst, "unit_idle_share": idle,
-            "tessellated_vertices": doc["frames"][0]["tessellated_vertices"]}
+            "tessellated_vertices": doc["frames"][0]["tessellated_vertices"],
+            "max_tessellated_vertices": max(fr["tessellated_vertices"] for fr in doc["frames"]),
+            "frame_cycles": [fr["cycles"] for fr in doc["frames"]]}
 
 
 def summarize(rows):
@@ -68,6 +76,31 @@ def summarize(rows):
                           "clock_mhz": best["clock_mhz"], "worst_ms": best["worst_ms"],
                           "clock_mhz_for_60fps": best["worst_cycles"] * TARGET_FPS / 1e6})
     return picks
+
+
+def plot(doc, path):
+    """Frame time along the camera path, per scene at K = 8: the default unit, each scene's pick,
+    and the fastest unit, at their own clocks, against the 60 fps line."""
+    fig, axes = plt.subplots(1, len(SCENES), figsize=(6.2 * len(SCENES), 4.2), squeeze=False)
+    for ax, scene in zip(axes[0], SCENES):
+        rows = [r for r in doc["rows"] if r["scene"] == scene and r["gpe_cycles"] == 8]
+        pick = next(p for p in doc["picks"] if p["scene"] == scene and p["gpe_cycles"] == 8)
+        shown = {"N=2 1x1 Λ=1 Nb=2": "default unit", pick["pick"]: "pick",
+                 max(rows, key=lambda r: r["fps"])["config"]: "fastest"}
+        for config, role in shown.items():
+            r = next(x for x in rows if x["config"] == config)
+            ms = [c / (r["clock_mhz"] * 1e3) for c in r["frame_cycles"]]
+            ax.plot(range(len(ms)), ms, "o-", ms=3, label=f"{role}: {config}, {r['clock_mhz']:.1f} MHz")
+        ax.axhline(1000.0 / TARGET_FPS, color="grey", lw=0.8, ls="--", label="60 frames per second")
+        ax.set_xlabel("frame along the camera path")
+        ax.set_ylabel("frame time (ms) at the unit's own clock, K = 8")
+        ax.set_title(f"{scene}: {rows[0]['tessellated_vertices']} to {rows[0]['max_tessellated_vertices']} tessellated "
+                     "vertices per frame", fontsize=9)
+        ax.set_ylim(bottom=0)
+        ax.grid(True, lw=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
 
 
 def markdown(doc):
@@ -120,11 +153,12 @@ def main():
     with open(os.path.join(args.out, "study.json"), "w") as f:
         json.dump(doc, f, indent=1)
     with open(os.path.join(args.out, "study.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w = csv.DictWriter(f, fieldnames=[k for k in rows[0] if k != "frame_cycles"], extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
     with open(os.path.join(args.out, "study.md"), "w") as f:
         f.write(markdown(doc))
+    plot(doc, os.path.join(args.out, "frames.png"))
     for p in doc["picks"]:
         print(f"{p['scene']} K={p['gpe_cycles']}: {p['pick']}: {p['fps']:.1f} fps at {p['clock_mhz']:.1f} MHz, "
               f"{p['area_mm2']:.2f} mm2 ({'meets' if p['meets_60fps'] else 'misses'} 60 fps; "
