@@ -466,6 +466,12 @@ def scene_claims(check):
     q = re.search(r"At K = 8 the geometry engine alone needs ([\d.]+) M cycles for the last", text).group(1)
     check("scenes.md: the geometry engine's cycles for the herd's last frame at K = 8", True,
           stated_close(q, 8 * rows("herd", 8)[0]["max_tessellated_vertices"] / 1e6))
+    fastest = next(r for r in rows("herd", 8) if r["config"] == herd8["pick"])
+    q = re.search(r"the engine's K cycles for the tessellated vertices are (\d+) % of the fastest unit's first frame and "
+                  r"(\d+) % of its last", text).groups()
+    check("scenes.md: the geometry engine's share of the fastest unit's herd frames (study.json)", True,
+          stated_close(q[0], 800 * fastest["tessellated_vertices"] / fastest["frame_cycles"][0]) and
+          stated_close(q[1], 800 * fastest["max_tessellated_vertices"] / fastest["frame_cycles"][-1]))
     default = next(r for r in rows("herd", 8) if r["config"] == "N=2 1x1 Λ=1 Nb=2")
     q = re.search(r"it needs ([\d ]+) cycles for the herd's worst frame, ([\d.]+) frames per second at its ([\d.]+) MHz",
                   text).groups()
