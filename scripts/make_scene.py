@@ -14,10 +14,12 @@ The camera path has --frames cameras (one frame each); --rows and --columns scal
 
 Usage: make_scene.py --preset herd|figures [--frames 12] [--rows 3] [--columns 3]
                      [--clock-mhz 53.6] -o scenes/NAME.scene.json
+       make_scene.py --check   (the shipped scenes are what the presets make)
 """
 import argparse
 import json
 import math
+import os
 import sys
 
 MODELS = "/usr/share/assimp/models"
@@ -82,25 +84,47 @@ def figures(args):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--preset", choices=("herd", "figures"), required=True)
+    ap.add_argument("--preset", choices=("herd", "figures"))
     ap.add_argument("--frames", type=int, default=12)
     ap.add_argument("--rows", type=int, default=3)
     ap.add_argument("--columns", type=int, default=3)
     ap.add_argument("--clock-mhz", type=float, default=53.6,
                     help="the unit's clock for frame times (default: the default unit at 0.18 um, docs/silicon.md)")
-    ap.add_argument("-o", "--output", required=True)
+    ap.add_argument("-o", "--output")
+    ap.add_argument("--check", action="store_true",
+                    help="instead of writing: fail unless scenes/herd and scenes/figures are what their presets make")
     args = ap.parse_args()
+    if args.check:
+        return check_shipped()
+    if not args.output or not args.preset:
+        sys.exit("make_scene: --preset and -o are required (except with --check)")
     if args.frames < 1 or args.rows < 1 or args.columns < 1:
         sys.exit("make_scene: --frames, --rows and --columns must be at least 1")
+    with open(args.output, "w") as f:
+        f.write(scene_text(args))
+    return 0
+
+
+def scene_text(args):
     draws, cameras = (herd if args.preset == "herd" else figures)(args)
     scene = {"format": "tessim-scene", "version": 1,
              "description": f"scripts/make_scene.py --preset {args.preset} --frames {args.frames} --rows {args.rows} "
                             f"--columns {args.columns} --clock-mhz {args.clock_mhz:g}",
              "clock_mhz": args.clock_mhz, "viewport": [1280, 720], "draws": draws, "camera_path": cameras}
-    with open(args.output, "w") as f:
-        json.dump(scene, f, indent=1)
-        f.write("\n")
-    return 0
+    return json.dumps(scene, indent=1) + "\n"
+
+
+def check_shipped():
+    """The shipped scenes are this script's output with its defaults (ctest scene_files)."""
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    stale = []
+    for preset in ("herd", "figures"):
+        args = argparse.Namespace(preset=preset, frames=12, rows=3, columns=3, clock_mhz=53.6)
+        with open(os.path.join(root, "scenes", f"{preset}.scene.json")) as f:
+            if f.read() != scene_text(args):
+                stale.append(preset)
+    print("make_scene: " + (f"stale: {', '.join(stale)}" if stale else "scenes/herd and scenes/figures are current"))
+    return 1 if stale else 0
 
 
 if __name__ == "__main__":
