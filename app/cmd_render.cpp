@@ -649,13 +649,7 @@ void run_render(const RenderArgs& args) {
   render::Camera camera;
   bool chosen_view = false;
   if (adaptive_view || view_camera) {
-    const ScreenCamera& from = view_camera ? *view_camera : settings.camera;
-    camera.eye = from.eye;
-    camera.target = from.target;
-    camera.up = view.up == render::UpAxis::Y ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-    if (glm::length(glm::cross(camera.up, camera.target - camera.eye)) == 0.0) camera.up = glm::dvec3(1, 0, 0);
-    camera.fov_y_deg = from.fov_deg;
-    camera.aspect = static_cast<double>(size.x) / size.y;
+    camera = picture_camera(view_camera ? *view_camera : settings.camera, view.up, size);
   } else {
     if (!args.view_given) {
       view = render::best_view(compare.flat ? panels.front() : flat_shaded(mesh), view.up);

@@ -215,6 +215,18 @@ struct Renderer::Impl {
   }
 
   // Visibility for sample rows [row_begin, row_end).
+  // The rows (in samples) triangle t spans; false when a corner is behind the camera.
+  bool row_span(std::size_t t, double& y_min, double& y_max) const {
+    const glm::uvec3& tri = mesh.triangles[t];
+    const Projected& a = projected[tri.x];
+    const Projected& b = projected[tri.y];
+    const Projected& c = projected[tri.z];
+    if (!a.valid || !b.valid || !c.valid) return false;
+    y_min = std::min({a.y, b.y, c.y});
+    y_max = std::max({a.y, b.y, c.y});
+    return true;
+  }
+
   // With `subset`, only those triangles (in order); else all.
   void rasterize(int row_begin, int row_end, std::vector<Sample>& samples,
                  const std::vector<std::uint32_t>* subset = nullptr) const {
@@ -363,12 +375,8 @@ struct Renderer::Impl {
     const int bands = (sample_height + kBandRows - 1) / kBandRows;
     std::vector<std::vector<std::uint32_t>> in_band(static_cast<std::size_t>(bands));
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const glm::uvec3& tri = mesh.triangles[t];
-      const Projected& a = projected[tri.x];
-      const Projected& b = projected[tri.y];
-      const Projected& c = projected[tri.z];
-      if (!a.valid || !b.valid || !c.valid) continue;
-      const double y_min = std::min({a.y, b.y, c.y}), y_max = std::max({a.y, b.y, c.y});
+      double y_min = 0.0, y_max = 0.0;
+      if (!row_span(t, y_min, y_max)) continue;
       if (!(y_max >= 0.0) || !(y_min <= sample_height) || !std::isfinite(y_max - y_min)) continue;
       const int first = std::clamp(static_cast<int>(std::floor((y_min - 1.0) / kBandRows)), 0, bands - 1);
       const int last = std::clamp(static_cast<int>(std::floor((y_max + 1.0) / kBandRows)), 0, bands - 1);
