@@ -174,6 +174,12 @@ void run_sim(const SimArgs& a, const ConfigFlags& flags) {
       throw InputError("command line", flag, "has no effect on one unit (it configures a system of --units M >= 2)");
     }
   }
+  // A chunk starts from an empty unit and an idle geometry engine; the bound that makes chunks
+  // exact (sim/run/chunked.hpp) is derived for a fixed K, not for a core's FIFO and waves.
+  if (chunks != 1 && cfg.ge_core())
+    throw InputError("command line", "--chunks",
+                     "cannot be combined with a shader-core geometry engine (ge_core_lanes " +
+                         std::to_string(cfg.ge_core_lanes) + "): chunks are exact for a fixed K only");
   if (!a.trace_window.empty() && a.trace.empty())
     throw InputError("command line", "--trace-window", "needs --trace (it selects the cycles of the trace)");
   if (chunks != 1 && a.schedule)

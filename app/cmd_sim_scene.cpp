@@ -1,6 +1,7 @@
 // tessim sim SCENE.scene.json: every frame of a scene through the unit and its geometry engine
 // (sim/run/scene.hpp, docs/scenes.md): frame times along the camera path, and with --stats a
 // statistics document with a frame list.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "model/base/output_file.hpp"
 #include "model/base/progress.hpp"
 #include "sim/config/config.hpp"
+#include "sim/ge/ge_cost.hpp"
 #include "sim/run/scene.hpp"
 #include "sim/version.hpp"
 
@@ -51,16 +53,27 @@ void run_sim_scene(const std::string& path, const std::string& stats_path, const
     throw InputError("command line", "--evaluation", "a scene runs the unit (evaluation unit)");
   if (!stats_path.empty()) check_output_paths({{"--stats", stats_path}}, {{"SCENE", path}});
   const sim::Scene scene = sim::load_scene(path);
+  // With a shader-core GE the unit's clock is a parameter of the run (unit_mhz, against the
+  // core's): it sets the frame times, and a scene's own clock_mhz gives way to it.
+  const double clock_mhz = cfg.ge_core() ? cfg.unit_mhz : scene.clock_mhz;
+  if (cfg.ge_core() && scene.clock_mhz > 0.0 && std::abs(scene.clock_mhz - cfg.unit_mhz) > 5e-4)
+    std::fprintf(stderr, "tessim: note: %s: frame times at unit_mhz %g (the shader core's partner clock), not the scene's clock_mhz %g\n",
+                 path.c_str(), cfg.unit_mhz, scene.clock_mhz);
   std::unique_ptr<AtomicOutput> stats;
   if (!stats_path.empty()) stats = std::make_unique<AtomicOutput>(stats_path);
   const bool on_stdout = stats && stats->kind() == OutputKind::Stdout;
   std::FILE* report = on_stdout ? stderr : stdout;
   std::uint64_t instances = 0;
   for (const sim::SceneDraw& d : scene.draws) instances += d.instances.size();
-  std::fprintf(report, "scene    %s: %zu draws (%llu instances), %zu frames, N = %d, K = %d%s\n", path.c_str(),
+  char k_text[96];
+  if (cfg.ge_core())
+    std::snprintf(k_text, sizeof k_text, "GE core %d lanes at %g MHz: K = %.3f", cfg.ge_core_lanes, cfg.ge_core_mhz,
+                  sim::core_cycles_per_vertex(cfg));
+  else
+    std::snprintf(k_text, sizeof k_text, "K = %d", cfg.gpe_cycles);
+  std::fprintf(report, "scene    %s: %zu draws (%llu instances), %zu frames, N = %d, %s%s\n", path.c_str(),
                scene.draws.size(), static_cast<unsigned long long>(instances), scene.cameras.size(), cfg.int_blocks,
-               cfg.gpe_cycles,
-               scene.clock_mhz > 0.0 ? (", clock " + std::to_string(scene.clock_mhz).substr(0, 8) + " MHz").c_str() : "");
+               k_text, clock_mhz > 0.0 ? (", clock " + std::to_string(clock_mhz).substr(0, 8) + " MHz").c_str() : "");
   ProgressDisplay progress("sim: frames", "frames", scene.cameras.size(), quiet || on_stdout);
   nlohmann::json frames = nlohmann::json::array();
   std::uint64_t worst = 0, total = 0;
@@ -71,13 +84,13 @@ void run_sim_scene(const std::string& path, const std::string& stats_path, const
                          {"vertices", f.vertices},
                          {"tessellated_vertices", f.tessellated_vertices},
                          {"draws", nlohmann::json::array()}};
-    if (scene.clock_mhz > 0.0) fj["ms"] = static_cast<double>(f.cycles) / (scene.clock_mhz * 1e3);
+    if (clock_mhz > 0.0) fj["ms"] = static_cast<double>(f.cycles) / (clock_mhz * 1e3);
     for (const sim::DrawRun& d : f.draws) fj["draws"].push_back(draw_json(scene, d));
     frames.push_back(std::move(fj));
     worst = std::max(worst, f.cycles);
     total += f.cycles;
     std::fprintf(report, "frame %3zu %12llu cycles", f.frame, static_cast<unsigned long long>(f.cycles));
-    if (scene.clock_mhz > 0.0) std::fprintf(report, " %9.3f ms", static_cast<double>(f.cycles) / (scene.clock_mhz * 1e3));
+    if (clock_mhz > 0.0) std::fprintf(report, " %9.3f ms", static_cast<double>(f.cycles) / (clock_mhz * 1e3));
     std::fprintf(report, "  %llu vertices (%llu tessellated), unit idle %.1f %%\n",
                  static_cast<unsigned long long>(f.vertices), static_cast<unsigned long long>(f.tessellated_vertices),
                  f.cycles ? 100.0 * static_cast<double>(f.unit_idle_cycles) / static_cast<double>(f.cycles) : 0.0);
@@ -87,13 +100,13 @@ void run_sim_scene(const std::string& path, const std::string& stats_path, const
   const double mean = static_cast<double>(total) / static_cast<double>(runs.size());
   nlohmann::json summary = {{"frames", runs.size()}, {"mean_cycles", mean}, {"worst_cycles", worst}};
   std::fprintf(report, "frames   mean %.0f cycles, worst %llu", mean, static_cast<unsigned long long>(worst));
-  if (scene.clock_mhz > 0.0) {
+  if (clock_mhz > 0.0) {
     // The worst frame decides the frame rate a unit sustains along the path.
-    const double fps = scene.clock_mhz * 1e6 / static_cast<double>(worst);
-    summary["worst_ms"] = static_cast<double>(worst) / (scene.clock_mhz * 1e3);
+    const double fps = clock_mhz * 1e6 / static_cast<double>(worst);
+    summary["worst_ms"] = static_cast<double>(worst) / (clock_mhz * 1e3);
     summary["sustained_fps"] = fps;
-    std::fprintf(report, " (%.3f ms): sustains %.1f frames per second at %g MHz", static_cast<double>(worst) / (scene.clock_mhz * 1e3),
-                 fps, scene.clock_mhz);
+    std::fprintf(report, " (%.3f ms): sustains %.1f frames per second at %g MHz", static_cast<double>(worst) / (clock_mhz * 1e3),
+                 fps, clock_mhz);
   }
   std::fprintf(report, "\n");
   if (stats) {
@@ -102,7 +115,7 @@ void run_sim_scene(const std::string& path, const std::string& stats_path, const
                           {"tool", {{"name", "tessim"}, {"version", tool_version()}}},
                           {"scene", path},
                           {"config", sim::to_json(cfg)},
-                          {"clock_mhz", scene.clock_mhz > 0.0 ? nlohmann::json(scene.clock_mhz) : nlohmann::json()},
+                          {"clock_mhz", clock_mhz > 0.0 ? nlohmann::json(clock_mhz) : nlohmann::json()},
                           {"summary", summary},
                           {"frames", std::move(frames)}};
     stats->stream() << doc.dump(1) << "\n";

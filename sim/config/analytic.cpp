@@ -9,6 +9,7 @@
 
 #include "model/pattern.hpp"
 #include "sim/base/int_ops.hpp"
+#include "sim/ge/ge_cost.hpp"
 
 namespace tessim::sim {
 
@@ -18,8 +19,15 @@ bool op_exists(int op, NormalMode normals) { return (int_ops::absent_ops(normals
 
 // Expected cycles the GPE needs per vertex: the accept cycle, K - 1 busy cycles, then a
 // geometric wait for a cycle without a random stall (1 / (1 - p) cycles including the accept).
+// A shader core: its derived K at full waves, stretched by the stalls in the same way.
 double gpe_cycles_per_vertex(const UnitConfig& cfg) {
+  if (cfg.ge_core()) return core_cycles_per_vertex(cfg) / (1.0 - cfg.gpe_stall_prob);
   return cfg.gpe_cycles - 1 + 1.0 / (1.0 - cfg.gpe_stall_prob);
+}
+
+// The share of cycles the GE is busy with vertices at one vertex per `cycles_per_vertex`.
+double gpe_busy_share(const UnitConfig& cfg, double cycles_per_vertex) {
+  return (cfg.ge_core() ? core_cycles_per_vertex(cfg) : cfg.gpe_cycles) / cycles_per_vertex;
 }
 
 }  // namespace
@@ -143,7 +151,7 @@ nlohmann::json analytic_json(const AnalyticPrediction& p, const UnitConfig& cfg,
       {"throughput", 1.0 / p.cycles_per_vertex},
       {"bottleneck", p.bottleneck},
       {"int_utilisation", p.ops_per_vertex / (cfg.int_blocks * p.cycles_per_vertex)},
-      {"gpe_busy", cfg.gpe_cycles / p.cycles_per_vertex},
+      {"gpe_busy", gpe_busy_share(cfg, p.cycles_per_vertex)},
       {"run_cycles", cycles},
       {"run_cycles_per_vertex", vertices > 0 ? cycles / vertices : 0.0},
   };

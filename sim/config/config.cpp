@@ -100,6 +100,10 @@ void UnitConfig::validate(const std::string& source) const {
     throw InputError(source, "units",
                      "a system of " + std::to_string(units) +
                          " units takes dedicated CPGs evaluating on their TEs (cpg_mapping dedicated, evaluation unit)");
+  if (units > 1 && ge_core())
+    throw InputError(source, "ge_core_lanes",
+                     "the shader core is one geometry engine behind one unit; a system of " + std::to_string(units) +
+                         " units has ge_ports ports of a fixed K (gpe_cycles)");
   if (units > 1 && reorder_slots < 2)
     throw InputError(source, "reorder_slots", "a system of units needs at least 2 (one is kept for the oldest patch)");
   if (cpg_mapping == CpgMapping::Host && evaluation != Evaluation::Gpe)

@@ -82,6 +82,17 @@ struct EnvironmentConfig {
   int ge_sfu_cost = 4;       // slots of a special function (reciprocal square root, sine, cosine)
   int ge_lookup_cost = 1;    // slots of a table read
   int ge_ports = 1;          // P: geometry-engine ports behind a system of units, each one vertex every K cycles
+  // The GE as a shader core on a clock of its own (sim/ge/gpe.hpp, docs/microarchitecture.md §12):
+  // 0 lanes keeps the fixed K above; W > 0 derives K from the core and its per-vertex program.
+  int ge_core_lanes = 0;     // W: SIMD lanes, one vertex each
+  int ge_core_issue = 1;     // I: wave instructions issued per core cycle
+  double ge_core_mhz = 200;  // the core's clock (kept to 1 kHz)
+  double unit_mhz = 200;     // the unit's clock, the cross-clock FIFO's write side (kept to 1 kHz)
+  int ge_core_fifo = 64;     // D: entries of the cross-clock vertex FIFO between the unit and the core
+  // Derived, not a parameter: issue slots per vertex of the shader work the run adds to the core's
+  // own program (evaluation gpe, displacement); set by with_ge_cost (sim/ge/ge_cost.hpp).
+  std::uint64_t ge_shader_slots = 0;
+  bool ge_core() const { return ge_core_lanes > 0; }
   bool operator==(const EnvironmentConfig&) const = default;
 };
 

@@ -37,7 +37,7 @@ constexpr auto E = ParamKind::Environment;
 constexpr auto W = ParamKind::Workload;
 constexpr auto I = ParamType::Int;
 
-const std::array<ParamSpec, 32> kParams{{
+const std::array<ParamSpec, 37> kParams{{
     {"tess_factor", "--tess-factor", "-L", nullptr, "L", W, I, 1, kMaxTessFactor, {}, "segments",
      "tessellation factor: segments per edge, the same for every triangle of a run",
      TESSIM_PARAM_FIELD(tess_factor)},
@@ -104,6 +104,19 @@ const std::array<ParamSpec, 32> kParams{{
     {"ge_lookup_cost", "--ge-lookup-cost", "", nullptr, "", E, I, 1, 64, {}, "slots",
      "issue slots of a table read on the geometry engine (the noise's permutation and gradients)",
      TESSIM_PARAM_FIELD(ge_lookup_cost)},
+    {"ge_core_lanes", "--ge-core-lanes", "", nullptr, "W", E, I, 0, 1024, {}, "lanes",
+     "the geometry engine as a shader core of W SIMD lanes (one vertex each) on its own clock, K derived from "
+     "its per-vertex program; 0: the fixed K of gpe_cycles",
+     TESSIM_PARAM_FIELD(ge_core_lanes)},
+    {"ge_core_issue", "--ge-core-issue", "", nullptr, "", E, I, 1, 8, {}, "instructions",
+     "wave instructions the shader core issues per core cycle (ge_core_lanes > 0)", TESSIM_PARAM_FIELD(ge_core_issue)},
+    {"ge_core_mhz", "--ge-core-mhz", "", nullptr, "", E, ParamType::Double, 1, 10000, {}, "MHz",
+     "the shader core's clock (ge_core_lanes > 0)", TESSIM_PARAM_FIELD(ge_core_mhz)},
+    {"unit_mhz", "--unit-mhz", "", nullptr, "", E, ParamType::Double, 1, 10000, {}, "MHz",
+     "the unit's clock, against which the shader core's is set (ge_core_lanes > 0)", TESSIM_PARAM_FIELD(unit_mhz)},
+    {"ge_core_fifo", "--ge-core-fifo", "", nullptr, "D", E, I, 1, 65536, {}, "vertices",
+     "entries of the cross-clock FIFO from the unit to the shader core (ge_core_lanes > 0)",
+     TESSIM_PARAM_FIELD(ge_core_fifo)},
     {"coord_int_bits", "--coord-int-bits", "", "CoordIntBits", "I", H, I, 1, 8, {}, "bits",
      "integer bits of a coordinate, sign excluded (width W = 1 + I + F <= 32)",
      TESSIM_PARAM_FIELD(format.coord_int_bits)},

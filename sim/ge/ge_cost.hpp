@@ -32,6 +32,10 @@ GeOps evaluation_ops(NormalMode normals);
 // Displacement of one point and Blinn's normal (mathematics.md §12); none for DisplaceKind::None.
 GeOps displacement_ops(DisplaceKind kind);
 
+// The GE's own work per vertex, which the fixed K stands for: transform to clip space, the
+// normal to eye space, one directional light (diffuse and Blinn specular), the perspective divide.
+GeOps vertex_work_ops();
+
 // Issue slots and cycles of `ops` on the GE's ALU of `env`.
 std::uint64_t ge_slots(const GeOps& ops, const EnvironmentConfig& env);
 int ge_cycles(const GeOps& ops, const EnvironmentConfig& env);
@@ -48,10 +52,28 @@ struct GeVertexCost {
   bool operator==(const GeVertexCost&) const = default;
 };
 GeVertexCost ge_vertex_cost(const UnitConfig& cfg, DisplaceKind displace);
-// `cfg` as the run's geometry engine behaves: one vertex every cost.total() cycles (what the
-// testbench, the watchdog, the analytic model and the chunk bounds take as K).
+// The GE as a shader core (env.ge_core(); docs/microarchitecture.md §12): each lane runs one
+// vertex's program — the GE's own work and the run's shader work, ge_shader_slots — and a wave of
+// up to W vertices takes ceil(slots / I) core cycles of issue.
+std::uint64_t core_program_slots(const EnvironmentConfig& env);
+std::uint64_t core_wave_cycles(const EnvironmentConfig& env);
+// K derived from the core: the unit's cycles per vertex at full waves,
+// ceil(slots / I) / W × unit_mhz / ge_core_mhz (fractional).
+double core_cycles_per_vertex(const EnvironmentConfig& env);
+// The longest the unit can wait for the core to take one vertex from a full FIFO: one wave's
+// issue in unit cycles, rounded up, and the pointers' two-register synchronizers both ways.
+int core_longest_wait(const EnvironmentConfig& env);
+
+// `cfg` as the run's geometry engine behaves (what the testbench, the watchdog, the analytic model
+// and the chunk bounds take as K): a fixed K of cost.total() cycles per vertex; or, for a shader
+// core, its program grown by the shader work's slots, K the longest wait for one vertex.
 inline UnitConfig with_ge_cost(UnitConfig cfg, const GeVertexCost& cost) {
-  cfg.gpe_cycles = cost.total();
+  if (cfg.ge_core()) {
+    cfg.ge_shader_slots = cost.shader_slots;
+    cfg.gpe_cycles = core_longest_wait(cfg);
+  } else {
+    cfg.gpe_cycles = cost.total();
+  }
   return cfg;
 }
 

@@ -36,6 +36,16 @@ struct GpeStats : ClassCounts<GpeClass> {
   bool operator==(const GpeStats&) const = default;
 };
 
+// The shader core's own counters (EnvironmentConfig::ge_core()): in core cycles and waves.
+struct GeCoreStats {
+  std::uint64_t core_cycles = 0;  // core clock edges over the run
+  std::uint64_t issue_cycles = 0; // core cycles issuing a wave's instructions
+  std::uint64_t waves = 0;        // waves launched
+  std::uint64_t lanes_filled = 0; // vertices launched: lanes_filled / (waves × W) is the lane use
+  std::uint64_t fifo_peak = 0;    // most vertices the cross-clock FIFO held
+  bool operator==(const GeCoreStats&) const = default;
+};
+
 // What the GPE does in one cycle.
 struct GpeCycle {
   bool ready = false;     // drives vtx_ready of the unit
@@ -44,10 +54,15 @@ struct GpeCycle {
   GpeClass cls = GpeClass::Starved;
 };
 
+// The GE in one of two forms. A fixed K: it accepts a vertex, is busy K - 1 cycles, and is ready
+// again. A shader core on its own clock (docs/microarchitecture.md §12): the unit writes vertices
+// into a cross-clock FIFO of D entries while it is not full; the core, whenever its issue is free,
+// launches a wave of the up to W vertices it sees there and issues it for ceil(slots / I) core
+// cycles. Each side sees the other's FIFO pointer through two registers of its own clock.
 class Gpe {
  public:
   Gpe(int cycles_per_vertex, double stall_prob, std::uint64_t seed);
-  explicit Gpe(const EnvironmentConfig& cfg) : Gpe(cfg.gpe_cycles, cfg.gpe_stall_prob, cfg.seed) {}
+  explicit Gpe(const EnvironmentConfig& cfg);
 
   void reset();  // back to the state after construction (generator re-seeded, stats cleared)
 
@@ -58,6 +73,7 @@ class Gpe {
   GpeCycle tick(bool vtx_valid, bool cpg_computing) {
     // No draw at probability 0: nothing could observe it (the generator only decides stalls).
     const bool stall = stall_prob_ > 0 && rng_.uniform() < stall_prob_;
+    if (core_) return core_tick(vtx_valid, cpg_computing, stall);
     GpeCycle c;
     c.ready = remaining_ == 0 && !stall;
     c.accepted = c.ready && vtx_valid;
@@ -85,7 +101,7 @@ class Gpe {
   // `vtx_valid` stays as it is — the rest of a busy countdown, or endless (~0) waiting for a
   // vertex; 0 when it takes a vertex now or may stall at random (its draws cannot be skipped).
   std::uint64_t quiet_cycles(bool vtx_valid) const {
-    if (stall_prob_ > 0) return 0;
+    if (stall_prob_ > 0 || core_) return 0;  // a core's clocks and synchronizers move every cycle
     if (remaining_ > 0) return static_cast<std::uint64_t>(remaining_);
     return vtx_valid ? 0 : ~std::uint64_t{0};
   }
@@ -108,7 +124,13 @@ class Gpe {
   // Whether the next cycle presents ready, when it cannot stall (stall probability 0).
   bool ready_now() const { return remaining_ == 0; }
 
+  // Cycles from now until the GE has finished every vertex it took, if no more come: the rest of
+  // K, or the FIFO's vertices through the core and its last wave's issue.
+  std::uint64_t drain_cycles() const;
+
   const GpeStats& stats() const { return stats_; }
+  bool core() const { return core_; }
+  const GeCoreStats& core_stats() const { return core_stats_; }
   int cycles_per_vertex() const { return cycles_per_vertex_; }
   double stall_prob() const { return stall_prob_; }
   std::uint64_t seed() const { return seed_; }
@@ -120,6 +142,19 @@ class Gpe {
   SplitMix64 rng_;
   int remaining_ = 0;
   GpeStats stats_;
+
+  // The shader core (core_): its shape, and the clocks as a phase accumulator — each unit cycle
+  // adds core_khz_, and every unit_khz_ of it is one core clock edge.
+  GpeCycle core_tick(bool vtx_valid, bool cpg_computing, bool stall);
+  bool core_edge();  // one core cycle; whether it issued
+  bool core_idle() const { return written_ == read_ && issue_left_ == 0; }
+  bool core_ = false;
+  std::uint64_t lanes_ = 1, wave_cycles_ = 1, fifo_depth_ = 1, unit_khz_ = 1, core_khz_ = 1;
+  std::uint64_t phase_ = 0;
+  std::uint64_t written_ = 0, read_ = 0;  // the FIFO's pointers as vertex counts (unit side, core side)
+  std::array<std::uint64_t, 2> read_sync_{}, written_sync_{};  // [1]: what the other side sees
+  std::uint64_t issue_left_ = 0;  // core cycles of the current wave still to issue
+  GeCoreStats core_stats_;
 };
 
 }  // namespace tessim::sim

@@ -56,11 +56,13 @@ std::string bottleneck(const SimResult& r) {
   char buf[320];
   // The GPE limits when it waited for a vertex no more often than the TE waited for it.
   if (r.gpe_waited <= r.unit.te[TeClass::BlockedByGpe]) {
+    // A shader core's K is derived (fractional); a fixed K is whole cycles.
+    const double k = c.ge_core() ? core_cycles_per_vertex(with_ge_cost(c, r.ge)) : r.ge.total();
     std::snprintf(buf, sizeof buf,
                   "GPE: waited for a vertex %.1f%% of cycles, TE blocked by GPE %.1f%% "
-                  "(one vertex / %d cycles, busy %.1f%%)",
-                  100 * ratio(r.gpe_waited, cycles), 100 * ratio(r.unit.te[TeClass::BlockedByGpe], cycles),
-                  r.ge.total(), 100 * ratio(r.gpe[GpeClass::Busy], cycles));
+                  "(one vertex / %g cycles, busy %.1f%%)",
+                  100 * ratio(r.gpe_waited, cycles), 100 * ratio(r.unit.te[TeClass::BlockedByGpe], cycles), k,
+                  100 * ratio(r.gpe[GpeClass::Busy], cycles));
     return buf;
   }
   // Otherwise the unit delivered vertices late: the stall class of the TE that dominates the late

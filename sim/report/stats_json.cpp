@@ -111,6 +111,20 @@ nlohmann::json stats_units() {
       {"ge.cycles_per_vertex.displacement", "cycles/vertex"},
       {"ge.cycles_per_vertex.total", "cycles/vertex"},
       {"ge.shader_slots_per_vertex", "issue slots/vertex (evaluation and displacement)"},
+      {"gpe.drain_cycles", "cycles (after the last acceptance, to the GE's last vertex finished)"},
+      {"ge.core.lanes", "lanes"},
+      {"ge.core.issue", "wave instructions/core cycle"},
+      {"ge.core.core_mhz", "MHz"},
+      {"ge.core.unit_mhz", "MHz"},
+      {"ge.core.fifo", "vertices"},
+      {"ge.core.program_slots_per_vertex", "issue slots/vertex (the GE's own work and the shader work)"},
+      {"ge.core.wave_cycles", "core cycles/wave"},
+      {"ge.core.cycles_per_vertex", "cycles/vertex (K derived: unit cycles at full waves)"},
+      {"ge.core.core_cycles", "core cycles"},
+      {"ge.core.issue_cycles", "core cycles"},
+      {"ge.core.waves", "waves"},
+      {"ge.core.lane_use", kShare},
+      {"ge.core.fifo_peak", "vertices"},
       {"system.units[].triangles", "triangles"},
       {"system.units[].vertices", "vertices"},
       {"system.ports[].vertices", "vertices"},
@@ -230,6 +244,24 @@ nlohmann::json stats_json(const SimResult& r) {
   for (std::size_t row = first_row(CounterBlock::Run); row < first_row(CounterBlock::Run) + row_count(CounterBlock::Run); ++row)
     j[kCounterRegistry[row].key] = counter_value(u, row);
   j["gpe"]["vertices"] = r.gpe.vertices;
+  j["gpe"]["drain_cycles"] = r.gpe_drain_cycles;
+  if (r.config.ge_core()) {
+    const UnitConfig run = with_ge_cost(r.config, r.ge);
+    const GeCoreStats& k = r.ge_core;
+    j["ge"]["core"] = {{"lanes", run.ge_core_lanes},
+                       {"issue", run.ge_core_issue},
+                       {"core_mhz", run.ge_core_mhz},
+                       {"unit_mhz", run.unit_mhz},
+                       {"fifo", run.ge_core_fifo},
+                       {"program_slots_per_vertex", core_program_slots(run)},
+                       {"wave_cycles", core_wave_cycles(run)},
+                       {"cycles_per_vertex", core_cycles_per_vertex(run)},
+                       {"core_cycles", k.core_cycles},
+                       {"issue_cycles", k.issue_cycles},
+                       {"waves", k.waves},
+                       {"lane_use", ratio(k.lanes_filled, k.waves * static_cast<std::uint64_t>(run.ge_core_lanes))},
+                       {"fifo_peak", k.fifo_peak}};
+  }
   if (r.system) {
     // A system of units: "cycles" is the system's; the unit blocks' classes above sum the units.
     const SystemStats& st = r.system->stats;

@@ -90,12 +90,13 @@ std::string summary(const SimResult& r) {
                   ratio(r.factors.vertices, r.triangles));
   }
   factors = buf;
-  std::snprintf(buf, sizeof buf, "workload %s: %llu triangles, %s, %s normals; GPE K=%d, stall %.2f, seed %llu\n",
+  const std::string k_text = c.ge_core() ? "K derived (GE core)" : "K=" + std::to_string(c.gpe_cycles);
+  std::snprintf(buf, sizeof buf, "workload %s: %llu triangles, %s, %s normals; GPE %s, stall %.2f, seed %llu\n",
                 printable_text(r.mesh).c_str(), static_cast<unsigned long long>(r.triangles), factors.c_str(),
-                std::string(to_string(c.normals)).c_str(), c.gpe_cycles, c.gpe_stall_prob,
+                std::string(to_string(c.normals)).c_str(), k_text.c_str(), c.gpe_stall_prob,
                 static_cast<unsigned long long>(c.seed));
   s << buf;
-  if (r.ge.total() != r.ge.base) {
+  if (!c.ge_core() && r.ge.total() != r.ge.base) {
     std::snprintf(buf, sizeof buf, "GE       %d cycles/vertex: K=%d", r.ge.total(), r.ge.base);
     s << buf;
     if (r.ge.evaluation) s << " + " << r.ge.evaluation << " evaluating the patch (evaluation gpe)";
@@ -105,6 +106,20 @@ std::string summary(const SimResult& r) {
       s << buf;
     }
     std::snprintf(buf, sizeof buf, " on %d ALU slots/cycle (docs/microarchitecture.md §12)\n", c.ge_alu_lanes);
+    s << buf;
+  }
+  if (c.ge_core()) {
+    // The GE as a shader core: its K is derived, and gpe_cycles is not used.
+    const UnitConfig run = with_ge_cost(c, r.ge);
+    std::snprintf(buf, sizeof buf,
+                  "GE core  %d lanes x %d issue at %g MHz (unit %g MHz), %llu slots/vertex, %llu cycles/wave: "
+                  "K = %.3f unit cycles/vertex; %llu waves, lanes %.1f %% used, FIFO %d (peak %llu)\n",
+                  run.ge_core_lanes, run.ge_core_issue, run.ge_core_mhz, run.unit_mhz,
+                  static_cast<unsigned long long>(core_program_slots(run)),
+                  static_cast<unsigned long long>(core_wave_cycles(run)), core_cycles_per_vertex(run),
+                  static_cast<unsigned long long>(r.ge_core.waves),
+                  100 * ratio(r.ge_core.lanes_filled, r.ge_core.waves * static_cast<std::uint64_t>(run.ge_core_lanes)),
+                  run.ge_core_fifo, static_cast<unsigned long long>(r.ge_core.fifo_peak));
     s << buf;
   }
   std::snprintf(buf, sizeof buf,

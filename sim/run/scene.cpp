@@ -180,6 +180,15 @@ Scene load_scene(const std::string& path) {
   return scene;
 }
 
+std::uint64_t untessellated_cycles(const UnitConfig& cfg, std::uint64_t vertices) {
+  if (!cfg.ge_core()) return vertices * static_cast<std::uint64_t>(cfg.gpe_cycles);
+  // Full waves of the core's own program (no shader work: nothing to evaluate or displace), in
+  // the unit's cycles, rounded up once for the draw.
+  const std::uint64_t lanes = static_cast<std::uint64_t>(cfg.ge_core_lanes);
+  const std::uint64_t core_cycles = (vertices + lanes - 1) / lanes * core_wave_cycles(cfg.environment());
+  return static_cast<std::uint64_t>(std::ceil(static_cast<double>(core_cycles) * cfg.unit_mhz / cfg.ge_core_mhz));
+}
+
 std::vector<FrameRun> run_scene(const Scene& scene, const UnitConfig& cfg,
                                 const std::function<void(const FrameRun&)>& on_frame) {
   std::map<std::string, Mesh> meshes;
@@ -202,7 +211,7 @@ std::vector<FrameRun> run_scene(const Scene& scene, const UnitConfig& cfg,
     if (draw.tessellation == DrawTessellation::None) {
       // The geometry engine runs its vertex work once per distinct vertex; the unit has none.
       run.vertices = mesh.vertex_count();
-      run.cycles = run.vertices * static_cast<std::uint64_t>(cfg.gpe_cycles);
+      run.cycles = untessellated_cycles(cfg, run.vertices);
       return run;
     }
     run.tessellated = true;
@@ -224,8 +233,8 @@ std::vector<FrameRun> run_scene(const Scene& scene, const UnitConfig& cfg,
     MeshPatterns patterns(settings ? &*settings : nullptr);
     const SimResult r = simulate(mesh, c, SimHooks{}, patterns);
     run.vertices = r.gpe.vertices;
-    run.cycles = r.run_cycles();
     run.unit_cycles = r.run_cycles();
+    run.cycles = r.run_cycles() + r.gpe_drain_cycles;
     return run;
   };
 

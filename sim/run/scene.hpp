@@ -62,8 +62,8 @@ struct DrawRun {
   bool tessellated = false;
   std::uint64_t triangles = 0;    // input triangles of the instance
   std::uint64_t vertices = 0;     // vertices the geometry engine processed
-  std::uint64_t cycles = 0;       // from the draw's start to its last vertex
-  std::uint64_t unit_cycles = 0;  // cycles the unit worked in: 0 for an untessellated draw
+  std::uint64_t cycles = 0;       // from the draw's start to the geometry engine's last vertex finished
+  std::uint64_t unit_cycles = 0;  // from the start to the unit's last vertex taken: 0 for an untessellated draw
 };
 
 struct FrameRun {
@@ -74,6 +74,10 @@ struct FrameRun {
   std::uint64_t tessellated_vertices = 0;
   std::vector<DrawRun> draws;
 };
+
+// Unit cycles the geometry engine of `cfg` spends on `vertices` untessellated vertices: K each,
+// or a shader core's full waves of its own program.
+std::uint64_t untessellated_cycles(const UnitConfig& cfg, std::uint64_t vertices);
 
 // Runs every frame of the scene through a unit of configuration `cfg` (its tess_factor is
 // replaced by each draw's L). Instances whose work does not depend on the camera (uniform and

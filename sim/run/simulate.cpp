@@ -264,6 +264,8 @@ SimResult simulate_ge_evaluation(RunSetup& setup) {
   // No timeline: its buckets follow the TE's classes, and there is no TE.
   r.unit = unit.stats();
   r.gpe = tb.gpe().stats();
+  r.gpe_drain_cycles = tb.gpe().drain_cycles();
+  r.ge_core = tb.gpe().core_stats();
   r.cpg_tag_cycles = unit.cpg_tag_cycles();
   return setup.finish();
 }
@@ -442,6 +444,8 @@ SimResult simulate_unit(RunSetup& setup) {
   timeline.finish(cycle, unit, tb.gpe());
   r.unit = unit.stats();
   r.gpe = tb.gpe().stats();
+  r.gpe_drain_cycles = tb.gpe().drain_cycles();
+  r.ge_core = tb.gpe().core_stats();
   r.gpe_waited = late.gpe_waited();
   r.te_late = late.te_late();
   accepted_vertices.finish(r);

@@ -53,6 +53,10 @@ struct SimResult {
   std::uint64_t cpg_tag_cycles = 0;  // CPG cycles scalar tags added over the run (cpg_tags)
   UnitCounters unit;
   GpeStats gpe;
+  // The cycles the geometry engine needs after the run's last acceptance to finish the vertices
+  // it took (a fixed K's rest; a shader core's FIFO and last wave); not part of run_cycles().
+  std::uint64_t gpe_drain_cycles = 0;
+  GeCoreStats ge_core;  // a shader-core geometry engine's counters (config ge_core())
   // The cycles after the GPE's first vertex in which it waited for the next one (ready, VTX
   // FIFO empty: its classes starved and cpg), and the TE's classes over the late vertex
   // intervals: the cycles after one accepted vertex up to and including the next acceptance,
