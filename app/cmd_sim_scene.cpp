@@ -98,7 +98,10 @@ void run_sim_scene(const std::string& path, const std::string& stats_path, const
   });
   progress.finish();
   const double mean = static_cast<double>(total) / static_cast<double>(runs.size());
-  nlohmann::json summary = {{"frames", runs.size()}, {"mean_cycles", mean}, {"worst_cycles", worst}};
+  // The GE's cycles per vertex (unit cycles): the fixed K, or the one derived from the core.
+  const double ge_k = cfg.ge_core() ? sim::core_cycles_per_vertex(cfg) : cfg.gpe_cycles;
+  nlohmann::json summary = {
+      {"frames", runs.size()}, {"mean_cycles", mean}, {"worst_cycles", worst}, {"ge_cycles_per_vertex", ge_k}};
   std::fprintf(report, "frames   mean %.0f cycles, worst %llu", mean, static_cast<unsigned long long>(worst));
   if (clock_mhz > 0.0) {
     // The worst frame decides the frame rate a unit sustains along the path.

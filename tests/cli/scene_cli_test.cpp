@@ -102,16 +102,22 @@ TEST(SceneCli, FramesAreTheirDrawsAndDrawsArePerMeshRuns) {
     EXPECT_EQ(ground["unit_cycles"], 0);
     EXPECT_EQ(ground["vertices"], 8);  // the cube's corners
     EXPECT_EQ(ground["cycles"], 8 * 8);
-    // Tessellated: each instance is the per-mesh run, whatever its placement.
-    EXPECT_EQ(frame["draws"][1]["vertices"], wuson["vertices_out"]);
-    EXPECT_EQ(frame["draws"][1]["cycles"], wuson["cycles"]);
+    // Tessellated: each instance is the per-mesh run, whatever its placement; the draw ends when
+    // the geometry engine has finished the last vertex (the rest of its K).
+    auto expect_run = [](const nlohmann::json& draw, const nlohmann::json& run) {
+      EXPECT_EQ(draw["vertices"], run["vertices_out"]);
+      EXPECT_EQ(draw["unit_cycles"], run["cycles"]);
+      EXPECT_EQ(run["gpe"]["drain_cycles"], 7);
+      EXPECT_EQ(draw["cycles"], run["cycles"].get<std::uint64_t>() + 7);
+    };
+    expect_run(frame["draws"][1], wuson);
     for (int i : {2, 3}) {
-      EXPECT_EQ(frame["draws"][i]["vertices"], sphere["vertices_out"]) << i;
-      EXPECT_EQ(frame["draws"][i]["cycles"], sphere["cycles"]) << i;
+      SCOPED_TRACE(i);
+      expect_run(frame["draws"][i], sphere);
     }
+    SCOPED_TRACE(k);
+    expect_run(frame["draws"][4], k == 0 ? near : far);
     const nlohmann::json& adaptive = k == 0 ? near : far;
-    EXPECT_EQ(frame["draws"][4]["vertices"], adaptive["vertices_out"]) << k;
-    EXPECT_EQ(frame["draws"][4]["cycles"], adaptive["cycles"]) << k;
     EXPECT_EQ(frame["tessellated_vertices"],
               wuson["vertices_out"].get<std::uint64_t>() + 2 * sphere["vertices_out"].get<std::uint64_t>() +
                   adaptive["vertices_out"].get<std::uint64_t>());
@@ -119,6 +125,42 @@ TEST(SceneCli, FramesAreTheirDrawsAndDrawsArePerMeshRuns) {
   EXPECT_GT(near["vertices_out"].get<std::uint64_t>(), far["vertices_out"].get<std::uint64_t>());
   EXPECT_EQ(doc["summary"]["worst_cycles"], std::max(doc["frames"][0]["cycles"].get<std::uint64_t>(),
                                                       doc["frames"][1]["cycles"].get<std::uint64_t>()));
+}
+
+// With a shader-core geometry engine: K is derived and printed, the frame's clock is unit_mhz,
+// an untessellated draw costs full waves of the core's own program, and a tessellated one the
+// per-mesh run with the same core plus the core's drain.
+TEST(SceneCli, AShaderCoreDerivesKAndRunsOnItsOwnClock) {
+  TempDir dir;
+  const fs::path scene = dir.path() / "small.scene.json";
+  write_json(scene, small_scene());
+  const fs::path stats = dir.path() / "s.json";
+  const std::vector<std::string> core{"--ge-core-lanes", "8", "--ge-core-mhz", "100", "--unit-mhz", "40"};
+  std::vector<std::string> argv{"sim", scene.string(), "--int-blocks", "2", "--stats", stats.string()};
+  argv.insert(argv.end(), core.begin(), core.end());
+  const TessimRun r = run_tessim(argv, dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  // K = 65 slots a wave / 8 lanes × 40 / 100 = 3.25 unit cycles per vertex.
+  EXPECT_NE(r.out.find("GE core 8 lanes at 100 MHz: K = 3.250"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("frame times at unit_mhz 40"), std::string::npos) << r.err;  // not the scene's 50
+  const nlohmann::json doc = read_json(stats);
+  EXPECT_DOUBLE_EQ(doc["summary"]["ge_cycles_per_vertex"].get<double>(), 3.25);
+  std::vector<std::string> mesh_args{"sim", kWuson, "-L", "4", "--int-blocks", "2", "--stats",
+                                     (dir.path() / "m.json").string(), "--quiet"};
+  mesh_args.insert(mesh_args.end(), core.begin(), core.end());
+  ASSERT_EQ(run_tessim(mesh_args, dir.path()).status, 0);
+  const nlohmann::json wuson = read_json(dir.path() / "m.json");
+  EXPECT_EQ(wuson["ge"]["core"]["lanes"], 8);
+  EXPECT_GT(wuson["gpe"]["drain_cycles"].get<std::uint64_t>(), 0u);
+  for (const auto& frame : doc["frames"]) {
+    const auto& ground = frame["draws"][0];
+    EXPECT_EQ(ground["unit_cycles"], 0);
+    EXPECT_EQ(ground["cycles"], 26);  // one wave of 8 corners: 65 core cycles = 26 unit cycles
+    EXPECT_EQ(frame["draws"][1]["unit_cycles"], wuson["cycles"]);
+    EXPECT_EQ(frame["draws"][1]["cycles"],
+              wuson["cycles"].get<std::uint64_t>() + wuson["gpe"]["drain_cycles"].get<std::uint64_t>());
+    EXPECT_DOUBLE_EQ(frame["ms"].get<double>(), frame["cycles"].get<double>() / 40e3);
+  }
 }
 
 TEST(SceneCli, BadScenesAreInputErrorsAndWriteNothing) {

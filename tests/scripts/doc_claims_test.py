@@ -489,6 +489,99 @@ def scene_claims(check):
           stated_close(q, 100 * max(r["unit_idle_share"] for r in doc["rows"] if r["scene"] == "herd")))
 
 
+def core_claims(check):
+    """load-balancing.md §17 (its table and prose), its summary paragraph and row, and docs/scenes.md's
+    paragraph against docs/results/scenes/cores.json and the configurations' clocks."""
+    doc = json.loads((ROOT / "docs/results/scenes/cores.json").read_text())
+    with open(ROOT / "docs/results/silicon/configurations.csv") as f:
+        clocks = [float(r["clock_mhz"]) for r in csv.DictReader(f)]
+    pick = {(p["scene"], p["core"]): p for p in doc["picks"]}
+    cores = {c["name"]: c for c in doc["cores"]}
+    programs = doc["programs"]
+    text = " ".join(section("docs/results/load-balancing.md", "## 17.").split())
+    q = re.search(r"own clock \(([\d.]+)–([\d.]+) MHz\)", text).groups()
+    check("§17: the configurations' clock range (configurations.csv)", True,
+          stated_close(q[0], min(clocks)) and stated_close(q[1], max(clocks)))
+    q = re.search(r"own work \(transform, normal, one light, the perspective divide\) is (\d+) issue slots", text)
+    check("§17: the GE's own program (cores.json)", int(q.group(1)),
+          programs["own work (transform, light)"]["vec4"]["slots"])
+    rows = table_rows("docs/results/load-balancing.md", "## 17.")
+    rows = {name: cells for name, cells in rows.items() if name.split(" — ")[0] in cores}
+    check("§17 table: a row per core", sorted(n.split(" — ")[0] for n in rows), sorted(cores))
+    for name, cells in rows.items():
+        core = cores[name.split(" — ")[0]]
+        lanes = re.match(r"(\d+) × (\d+), (\d+) MHz", cells[0]).groups()
+        ks = cells[1].split(" / ")
+        lo, hi = cells[2].split("–")
+        p = pick[("herd", core["name"])]
+        check(f"§17 table: the {core['name']} row (cores.json)", True,
+              (int(lanes[0]), int(lanes[1]), int(lanes[2])) == (core["lanes"], core["issue"], core["mhz"]) and
+              all(stated_close(k, programs[prog][core["name"]]["k"]) for k, prog in
+                  zip(ks, ["own work (transform, light)", "+ sine displacement",
+                           "+ evaluation of the patch (evaluation gpe)"])) and
+              stated_close(lo, p["k_min"]) and stated_close(hi, p["k_max"]))
+    simd = cores["simd32"]
+    q = re.search(r"give K = ([\d.]+) at a 100 MHz unit, ([\d.]+)–([\d.]+) at the clocks", text).groups()
+    check("§17: simd32's K (cores.json)", True,
+          stated_close(q[0], programs["own work (transform, light)"]["simd32"]["k"]) and
+          stated_close(q[1], pick[("herd", "simd32")]["k_min"]) and stated_close(q[2], pick[("herd", "simd32")]["k_max"]))
+    q = re.search(r"noise displacement \((\d+) slots\) stays at K = ([\d.]+) on simd32. With vec4, K = ([\d.]+) at 100", text)
+    check("§17: noise displacement and vec4 at 100 MHz (cores.json)", True,
+          int(q.group(1)) == programs["+ noise displacement"]["simd32"]["slots"] and
+          stated_close(q.group(2), programs["+ noise displacement"]["simd32"]["k"]) and
+          stated_close(q.group(3), programs["own work (transform, light)"]["vec4"]["k"]))
+    vec4 = cores["vec4"]
+    herd = {c: pick[("herd", c)] for c in cores}
+    q = re.search(r"with \*\*vec4, two\*\* on both scenes — the herd is bound by the core \(([\d.]+) Mvertices/s: ([\d.]+) "
+                  r"frames per second at best, and ([\d.]+) already with N = 2, three CPG lanes and registered products at "
+                  r"([\d.]+) MHz\)", text).groups()
+    n2 = next(r for r in doc["rows"] if r["scene"] == "herd" and r["core"] == "vec4" and r["config"] == "N=2 3x1 reg Λ=3 Nb=4")
+    check("§17: vec4 on the herd (cores.json)", True,
+          all(pick[(s_, "vec4")]["int_blocks_needed"] == 2 for s_ in ("herd", "figures")) and
+          stated_close(q[0], vec4["lanes"] * vec4["issue"] / programs["own work (transform, light)"]["vec4"]["slots"]
+                       * vec4["mhz"]) and stated_close(q[1], herd["vec4"]["best_fps"]) and stated_close(q[2], n2["fps"])
+          and stated_close(q[3], n2["clock_mhz"]))
+    q = re.search(r"\*\*simd32 or cu64, four\*\* — .*?\(N = (\d), three CPG lanes of radix 16, ([\d.]+) MHz\) gives ([\d.]+) "
+                  r"frames per second, .*? which would take ([\d.]+) Mvertices/s, ([\d.]+) vertices per cycle at ([\d.]+) MHz",
+                  text).groups()
+    wide = [herd["simd32"], herd["cu64"]]
+    check("§17: the wide cores on the herd (cores.json)", True,
+          all(p["int_blocks_needed"] == 4 and p["pick_int_blocks"] == int(q[0]) and p["pick"] == "N=4 3x4 Λ=1 Nb=2" and
+              stated_close(q[1], p["clock_mhz"]) and stated_close(q[2], p["fps"]) and
+              stated_close(q[3], p["mvertices_per_s_for_60fps"]) and stated_close(q[4], p["vertices_per_cycle_for_60fps"])
+              and stated_close(q[5], p["clock_mhz"]) for p in wide) and
+          all(pick[("figures", c)]["int_blocks_needed"] == 4 for c in ("simd32", "cu64")))
+    q = re.search(r"The figures scene is sustained at 60 frames per second by the same ([\d.]+) mm² unit \(N = 2, registered "
+                  r"CPG products, Λ = 3, ([\d.]+) MHz\) with any of the three cores", text).groups()
+    fig = [pick[("figures", c)] for c in cores]
+    check("§17: the figures scene's pick for every core (cores.json)", True,
+          all(p["meets_60fps"] and p["pick"] == "N=2 1x1 reg Λ=3 Nb=4" and stated_close(q[0], p["area_mm2"]) and
+              stated_close(q[1], p["clock_mhz"]) for p in fig))
+    check("§17: the FIFO depth (cores.json)", True, f"cross-clock FIFO of {doc['fifo']} vertices" in text)
+    summary = " ".join(section("docs/results/load-balancing.md", "## Answer in short").split())
+    q = re.search(r"K is ([\d.]+)–([\d.]+) for a four-lane vertex shader at (\d+) MHz .*? K falls below ([\d.]+), .*? "
+                  r"still ([\d.]+) frames per second on the herd scene, where 60 would take ([\d.]+) vertices per cycle",
+                  summary).groups()
+    check("Answer in short: where K comes from (cores.json)", True,
+          stated_close(q[0], herd["vec4"]["k_min"]) and stated_close(q[1], herd["vec4"]["k_max"]) and
+          int(q[2]) == vec4["mhz"] and max(herd["simd32"]["k_max"], herd["cu64"]["k_max"]) < float(q[3]) and
+          stated_close(q[4], herd["simd32"]["fps"]) and stated_close(q[5], herd["simd32"]["vertices_per_cycle_for_60fps"]))
+    row = next(l for l in (ROOT / "docs/results/load-balancing.md").read_text().splitlines()
+               if l.startswith("| a GE that is a wide shader core"))
+    q = re.search(r"K < ([\d.]+) at every unit clock measured.*?four-lane core \(K = ([\d.]+)–([\d.]+)\)", row).groups()
+    check("What to pick: the wide-core row (cores.json)", True,
+          max(herd["simd32"]["k_max"], herd["cu64"]["k_max"]) < float(q[0]) and stated_close(q[1], herd["vec4"]["k_min"])
+          and stated_close(q[2], herd["vec4"]["k_max"]))
+    scenes = " ".join(section("docs/scenes.md", "## How the unit is sized").split())
+    q = re.search(r"\(four lanes at (\d+) MHz; (\d+) lanes at (\d+) MHz; (\d+) lanes at (\d+) MHz\).*?The four-lane core is the "
+                  r"herd's limit \(([\d.]+) frames per second at best\) and two INT blocks are enough; with 32 or 64 lanes K "
+                  r"is below ([\d.]+), .*? four blocks are needed, and the best herd frame gives ([\d.]+) frames", scenes).groups()
+    check("scenes.md: K from a shader core (cores.json)", True,
+          [int(x) for x in q[:5]] == [vec4["mhz"], simd["lanes"], simd["mhz"], cores["cu64"]["lanes"], cores["cu64"]["mhz"]]
+          and stated_close(q[5], herd["vec4"]["best_fps"]) and max(herd["simd32"]["k_max"], herd["cu64"]["k_max"]) < float(q[6])
+          and stated_close(q[7], herd["simd32"]["best_fps"]))
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--tessim", required=True)
@@ -520,6 +613,7 @@ def main() -> int:
     buffer_rows(check, a.tessim)
     copies_rows(check, a.tessim)
     scene_claims(check)
+    core_claims(check)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
