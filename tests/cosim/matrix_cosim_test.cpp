@@ -63,12 +63,17 @@ void run_stimulus(const char* build, Stimulus stimulus) {
   for (const sim::TriangleFx& t : stream) vertices += static_cast<std::uint64_t>(sim::patch_vertex_count(t));
   EXPECT_EQ(r.vertices, vertices);
   // Each stimulus reached the state it is there for.
-  if (stimulus == Stimulus::SlowGe) EXPECT_GT(r.model_counters.te[sim::TeClass::BlockedByGpe], 0u) << "the TE must wait for the GE";
-  if (stimulus == Stimulus::Saturating) EXPECT_GT(r.reference.saturated, 0u) << "the stream must saturate";
-  if (stimulus == Stimulus::Tagged)
+  if (stimulus == Stimulus::SlowGe) {
+    EXPECT_GT(r.model_counters.te[sim::TeClass::BlockedByGpe], 0u) << "the TE must wait for the GE";
+  }
+  if (stimulus == Stimulus::Saturating) {
+    EXPECT_GT(r.reference.saturated, 0u) << "the stream must saturate";
+  }
+  if (stimulus == Stimulus::Tagged) {
     EXPECT_GT(r.model_counters.cpg[sim::CpgClass::Busy],
               count * static_cast<std::uint64_t>(sim::cpg_cycles(o.unit.normals, o.unit.format, o.unit.cpg)))
         << "the tag pass must run";
+  }
 }
 
 class CosimMatrix : public ::testing::TestWithParam<const char*> {};

@@ -192,10 +192,11 @@ TEST(UnitSystem, UnorderedReassemblyBoundsWhatTheOrderCosts) {
       EXPECT_LE(s.max_occupancy, slots);
       EXPECT_EQ(s.vertices, want.vertices.size());
       const double a = throughput(ordered.result), b = throughput(unordered.result);
-      if (slots == 4)
+      if (slots == 4) {
         EXPECT_GT(b, 1.15 * a) << describe(cfg);
-      else if (slots == 4096)
+      } else if (slots == 4096) {
         EXPECT_NEAR(b, a, 0.02 * a) << describe(cfg);
+      }
       EXPECT_GE(b, 0.98 * a) << describe(cfg);
     }
   }
