@@ -7,6 +7,9 @@
 # -flatten`: LUTs, CARRY4s, flip-flops, DSP48E1s. This converts the unit's transistors into GE
 # lanes; the lanes are not part of the unit and rtl/tess.f does not list them.
 #
+# Also the lane of the GE as a shader core (ge_shader_lane: the FP32 lane with its register file,
+# operand network and write-back) and the issue logic its lanes share (ge_simd_issue).
+#
 # Usage: scripts/ge_lane_cost.sh [-xilinx] [-json FILE]
 #   prints one line per lane; -json also writes the numbers as JSON to FILE.
 set -euo pipefail
@@ -21,7 +24,12 @@ while (($#)); do
     *) echo "usage: ge_lane_cost.sh [-xilinx] [-json FILE]" >&2; exit 2 ;;
   esac
 done
-sources=$(/usr/bin/python3 "$root/scripts/rtl_sources.py" "$ge/ge.f" | tr '\n' ' ')
+all_sources=$(/usr/bin/python3 "$root/scripts/rtl_sources.py" "$ge/ge.f" | tr '\n' ' ')
+# The plain lanes are read with the files they were first costed with (the package and the two
+# lanes): ABC's result depends on the set of modules read, and with the shader core's files too
+# the FP32 lane maps to 50 586 transistors instead of 50 520.
+lane_sources=$(/usr/bin/python3 "$root/scripts/rtl_sources.py" "$ge/ge.f" | grep -E '/(tess_pkg|ge_fma_lane|ge_mac_lane)\.sv$' | tr '\n' ' ')
+sources=$lane_sources
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -78,7 +86,19 @@ mac_json=$(entry ", \"width\": $width, \"int_bits\": $int_bits, \"frac_bits\": $
 cost ge_mac_lane_w32 ge_mac_lane "-set IntBits $w32_int_bits"
 w32_json=$(entry ", \"width\": 32, \"int_bits\": $w32_int_bits, \"frac_bits\": $frac_bits")
 
+# A lane of the GE as a shader core: the FP32 lane with its register file (Regs per wave, Waves
+# waves), operand network and write-back; and the issue logic its W lanes share.
+lane_param() { sed -n "s/.*parameter int unsigned $2 *= *\([0-9]*\),.*/\1/p" "$ge/$1.sv"; }
+regs=$(lane_param ge_shader_lane Regs)
+waves=$(lane_param ge_shader_lane Waves)
+pc_bits=$(lane_param ge_simd_issue PcBits)
+sources=$all_sources
+cost ge_shader_lane ge_shader_lane
+shader_json=$(entry ", \"regs\": $regs, \"waves\": $waves, \"register_bits\": $((32 * regs * waves))")
+cost ge_simd_issue ge_simd_issue
+issue_json=$(entry ", \"waves\": $waves, \"pc_bits\": $pc_bits")
+
 if [[ -n $json ]]; then
-  printf '{\n  "ge_fma_lane": %s,\n  "ge_mac_lane": %s,\n  "ge_mac_lane_w32": %s\n}\n' \
-    "$fma_json" "$mac_json" "$w32_json" > "$json"
+  printf '{\n  "ge_fma_lane": %s,\n  "ge_mac_lane": %s,\n  "ge_mac_lane_w32": %s,\n  "ge_shader_lane": %s,\n  "ge_simd_issue": %s\n}\n' \
+    "$fma_json" "$mac_json" "$w32_json" "$shader_json" "$issue_json" > "$json"
 fi

@@ -17,11 +17,15 @@ docs/microarchitecture.md §12), measures with `tessim sim`:
                   multiply-add lane of docs/results/ge_lane/costs.json: (c1, measured) the lanes
                   serve the shader's evaluation and displacement, K unchanged; (c2, a model from the
                   measured shader slots) they serve all of the GE's work, its own K * 4 issue slots
-                  per vertex included: min(1, lanes / (4 K + slots)) vertices per cycle.
+                  per vertex included: min(1, lanes / (4 K + slots)) vertices per cycle;
+    (c*) the same with lanes of a shader core: each the FP32 lane with its register file, operand network
+                  and write-back (ge_shader_lane) and 1/32 of a SIMD's issue logic (ge_simd_issue), from
+                  docs/results/ge_lane/costs.json (c*1 measured, c*2 the model).
 
 Writes OUT/study.csv (one row per workload, displacement, K and architecture: vertices, cycles,
 throughput, GE cycles per vertex by part, the unit's configuration and transistors), OUT/study.md
-(the verdict table, the bus traffic and the stored patterns' memory), OUT/verdict.png/.svg
+(the verdict table, the verdict with shader-core lanes, the bus traffic and the stored patterns'
+memory), OUT/verdict.json (every point's vertices per cycle by architecture), OUT/verdict.png/.svg
 (throughput against L per K) and OUT/aliasing.png (the displacement at L = 2 and with Nyquist
 factors, as the seed's Figure 4).
 
@@ -50,6 +54,7 @@ UNIT_BASE = {"int_latency": 3, "cpg_product_reg": 1, "cp_buffers": 4, "cpg_digit
 UNITS = [dict(int_blocks=n, te_contexts=4 if n <= 2 else 8, cpg_lanes=lanes, cpg_copies=copies)
          for n in (1, 2, 4, 7) for lanes, copies in ((1, 1), (3, 1), (3, 4))]
 KEEPS_UP = 0.97
+CORE_SIMD = 32  # lanes that share one issue logic in (c*)
 
 
 def unit_name(u):
@@ -84,9 +89,21 @@ def run(tessim, args, params, scratch, index):
             "limit": s["bottleneck"].split(":")[0]}
 
 
-def lane_transistors():
+def lane_costs():
     with open(os.path.join(HERE, "..", "docs", "results", "ge_lane", "costs.json")) as f:
-        return json.load(f)["ge_fma_lane"]["transistors"]
+        return json.load(f)
+
+
+def lane_transistors():
+    """A bare FP32 fused multiply-add lane (c)."""
+    return lane_costs()["ge_fma_lane"]["transistors"]
+
+
+def core_lane_transistors():
+    """A lane of a shader core (c*): the FP32 lane with its register file, operand network and
+    write-back (ge_shader_lane), and its share of the issue logic of a SIMD of CORE_SIMD lanes."""
+    c = lane_costs()
+    return c["ge_shader_lane"]["transistors"] + c["ge_simd_issue"]["transistors"] / CORE_SIMD
 
 
 def run_points(tessim, points, jobs):
@@ -125,15 +142,18 @@ def cost_units(tessim, out_csv, jobs):
 def simulate_ge(tessim, units_csv, out_csv, jobs):
     """(b) and (c) for every workload and K, (c) sized by the (a) that the unit rows choose."""
     picks = pick_units(read_csv(units_csv))
-    lane = lane_transistors()
+    lane, core_lane = lane_transistors(), core_lane_transistors()
     base = {"evaluation": "gpe", "cpg_mapping": "host", "cpg_lanes": 1, "cpg_copies": 1, "cpg_product_reg": 0,
             "normals": "quadratic"}
     points = []
     for name, displaced, args in workloads():
         for k in KS:
-            lanes = BASE_LANES + int(float(picks[(name, displaced, k)]["cost_unit_transistors"]) // lane)
+            budget = float(picks[(name, displaced, k)]["cost_unit_transistors"])
+            lanes = BASE_LANES + int(budget // lane)
+            core_lanes = BASE_LANES + int(budget // core_lane)
             for arch, params in (("gpe", dict(base, gpe_cycles=k, ge_alu_lanes=BASE_LANES)),
-                                 ("gpe+lanes", dict(base, gpe_cycles=k, ge_alu_lanes=lanes))):
+                                 ("gpe+lanes", dict(base, gpe_cycles=k, ge_alu_lanes=lanes)),
+                                 ("gpe+core lanes", dict(base, gpe_cycles=k, ge_alu_lanes=core_lanes))):
                 head = {"workload": name, "displaced": int(displaced), "K": k, "arch": arch,
                         "config": f"{params['ge_alu_lanes']} lanes"}
                 points.append((head, args, params))
@@ -193,40 +213,70 @@ def report(units_csv, ge_csv, out_dir):
     ge = read_csv(ge_csv)
     picks = pick_units(units)
     by = {(r["workload"], bool(int(r["displaced"])), int(r["K"]), r["arch"]): r for r in ge}
-    lane = lane_transistors()
+    lane, core_lane = lane_transistors(), core_lane_transistors()
     lines = ["<!-- scripts/ge_study.py: regenerate, do not edit -->", "",
              f"Wuson; vertices per cycle of each architecture (one clock for all); the GE's own work K cycles "
-             f"per vertex on {BASE_LANES} lanes; (c) adds floor(unit transistors / {lane:,}) FP32 lanes to them. "
-             "(a), (b) and (c1) are measured with `tessim sim`; (c2) is the model min(1, lanes / (4 K + shader "
-             "slots)): the GE's own work also on the added lanes, in one program with the shader, at most one "
-             "point a cycle from the DPG. Bold: the fastest.", ""]
+             f"per vertex on {BASE_LANES} lanes; (c) adds floor(unit transistors / {lane:,}) bare FP32 lanes to them, "
+             f"(c\\*) floor(unit transistors / {core_lane:,.0f}) shader-core lanes (the FP32 lane with its register "
+             f"file, operand network and write-back, and 1/{CORE_SIMD} of a SIMD's issue logic: "
+             "docs/results/ge_lane/costs.json). "
+             "(a), (b), (c1) and (c\\*1) are measured with `tessim sim`; (c2) and (c\\*2) are the model min(1, lanes / "
+             "(4 K + shader slots)): the GE's own work also on the added lanes, in one program with the shader, at "
+             "most one point a cycle from the DPG. Bold: the fastest; the fair comparison is (a) against (c\\*).", ""]
     verdict = []
     for k in KS:
         lines.append(f"**K = {k}**")
         lines.append("")
         lines.append("| workload | displaced | vertices | (a) unit: pick | M tr. | vertices/cycle | (b) GE: cycles/vertex | "
-                     "vertices/cycle | (c) lanes | (c1) the shader on them | (c2) all GE work on them (model) |")
-        lines.append("|---|---|---|---|---|---|---|---|---|---|---|")
+                     "vertices/cycle | (c) lanes | (c1) the shader on them | (c2) all GE work on them (model) | "
+                     "(c\\*) core lanes | (c\\*1) | (c\\*2) (model) |")
+        lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for name in sorted({r["workload"] for r in units}, key=workload_order):
             for displaced in (False, True):
                 a = picks[(name, displaced, k)]
                 b = by[(name, displaced, k, "gpe")]
                 c1 = by[(name, displaced, k, "gpe+lanes")]
+                s1 = by[(name, displaced, k, "gpe+core lanes")]
                 values = [float(a["throughput"]), float(b["throughput"]), float(c1["throughput"]),
-                          all_work_on_lanes(k, int(c1["ge_alu_lanes"]), int(b["shader_slots"]))]
+                          all_work_on_lanes(k, int(c1["ge_alu_lanes"]), int(b["shader_slots"])),
+                          float(s1["throughput"]), all_work_on_lanes(k, int(s1["ge_alu_lanes"]), int(b["shader_slots"]))]
                 best = max(values)
                 cell = [f"**{v:.4f}**" if v == best else f"{v:.4f}" for v in values]
                 lines.append(f"| {name} | {'sine' if displaced else '–'} | {int(a['vertices']):,} | {a['config']} | "
                              f"{float(a['cost_unit_transistors']) / 1e6:.2f} | {cell[0]} | {b['ge_total']} | {cell[1]} | "
-                             f"{c1['ge_alu_lanes']} | {cell[2]} | {cell[3]} |")
+                             f"{c1['ge_alu_lanes']} | {cell[2]} | {cell[3]} | {s1['ge_alu_lanes']} | {cell[4]} | "
+                             f"{cell[5]} |")
                 verdict.append({"K": k, "workload": name, "displaced": displaced, "a": values[0], "b": values[1],
-                                "c1": values[2], "c2": values[3]})
+                                "c1": values[2], "c2": values[3], "s1": values[4], "s2": values[5],
+                                "lanes": int(c1["ge_alu_lanes"]), "core_lanes": int(s1["ge_alu_lanes"])})
         lines.append("")
+    lines += fair_section(verdict, core_lane)
     lines += bus_section()
+    with open(os.path.join(out_dir, "verdict.json"), "w") as f:
+        json.dump({"lane_transistors": lane, "core_lane_transistors": core_lane, "core_simd": CORE_SIMD,
+                   "points": verdict}, f, indent=1)
     with open(os.path.join(out_dir, "study.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print(f"ge_study.py: {os.path.join(out_dir, 'study.md')}", file=sys.stderr)
     plot(verdict, out_dir)
+
+
+def fair_section(verdict, core_lane):
+    """How the verdict moves when the lanes are costed as a shader core's: per comparison, the points
+    (of all workloads and K) each side wins and the range of the ratio."""
+    lines = [f"**The verdict with shader-core lanes** ({core_lane:,.0f} transistors a lane instead of "
+             f"{lane_transistors():,}): points where the unit is faster, of {len(verdict) // 2} per displacement, and "
+             "the range of (lanes / unit) vertices per cycle.", "",
+             "| comparison | displaced | unit faster | lanes faster | lanes / unit |", "|---|---|---|---|---|"]
+    for key, what in (("c1", "(c1) bare lanes, the shader on them"), ("s1", "(c\\*1) core lanes, the shader on them"),
+                      ("c2", "(c2) bare lanes, all GE work (model)"), ("s2", "(c\\*2) core lanes, all GE work (model)")):
+        for displaced in (False, True):
+            pts = [v for v in verdict if v["displaced"] == displaced]
+            ratios = [v[key] / v["a"] for v in pts]
+            lines.append(f"| {what} | {'sine' if displaced else '–'} | {sum(r < 1 for r in ratios)} | "
+                         f"{sum(r > 1 for r in ratios)} | {min(ratios):.2f}–{max(ratios):.2f} |")
+    lines.append("")
+    return lines
 
 
 def bus_section():
@@ -256,7 +306,8 @@ def plot(verdict, out_dir):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, len(KS), figsize=(4.2 * len(KS), 3.8), sharey=False)
     styles = {"a": ("(a) unit", "#0072B2"), "b": ("(b) GE evaluates", "#D55E00"),
-              "c1": ("(c1) + lanes, shader", "#009E73"), "c2": ("(c2) + lanes, all GE work (model)", "#CC79A7")}
+              "c1": ("(c1) + bare lanes, shader", "#009E73"), "s1": ("(c*1) + shader-core lanes, shader", "#E69F00"),
+              "s2": ("(c*2) + shader-core lanes, all GE work (model)", "#CC79A7")}
     for ax, k in zip(axes, KS):
         for key, (label, colour) in styles.items():
             for displaced, dash in ((False, "-"), (True, "--")):

@@ -3,3 +3,5 @@
 ../tess_pkg.sv
 ge_fma_lane.sv
 ge_mac_lane.sv
+ge_shader_lane.sv
+ge_simd_issue.sv

@@ -9,7 +9,7 @@
 
 #include "model/pattern.hpp"
 #include "sim/base/int_ops.hpp"
-#include "sim/ge/ge_cost.hpp"
+#include "sim/config/ge_program.hpp"
 
 namespace tessim::sim {
 

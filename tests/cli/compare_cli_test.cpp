@@ -55,9 +55,14 @@ TEST(StatsJson, EveryNumberHasAUnitAndEveryUnitANumber) {
                                 dir.path())
                 .status,
             0);
+  // A shader-core geometry engine adds the core's figures.
+  const auto core = dir.path() / "core.json";
+  ASSERT_EQ(testing::run_tessim({"sim", kMesh, "-L", "2", "--ge-core-lanes", "8", "--stats", core.string()}, dir.path())
+                .status,
+            0);
   const json units = sim::stats_units();
   std::set<std::string> seen;
-  for (const auto& p : {plain, rich, system}) {
+  for (const auto& p : {plain, rich, system, core}) {
     const json j = read_json(p);
     EXPECT_EQ(j["schema_version"], sim::kStatsSchemaVersion);
     EXPECT_EQ(j["tool"]["name"], "tessim");

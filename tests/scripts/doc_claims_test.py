@@ -582,6 +582,66 @@ def core_claims(check):
           and stated_close(q[7], herd["simd32"]["best_fps"]))
 
 
+def ge_fair_claims(check):
+    """load-balancing.md §15's shader-core lanes, its summary and its row against
+    docs/results/ge_lane/costs.json and docs/results/ge/verdict.json."""
+    costs = json.loads((ROOT / "docs/results/ge_lane/costs.json").read_text())
+    verdict = json.loads((ROOT / "docs/results/ge/verdict.json").read_text())
+    lane, issue, fma = costs["ge_shader_lane"], costs["ge_simd_issue"], costs["ge_fma_lane"]
+    text = " ".join(section("docs/results/load-balancing.md", "## 15.").split())
+    q = re.search(r"\(16 registers per wave, 4 waves\).*?a lane costs ([\d ]+) transistors \(([\d ]+) flip-flops, ([\d ]+) of "
+                  r"them the registers\) and the issue logic ([\d ]+), so a lane of a (\d+)-lane SIMD costs ([\d ]+), ([\d.]+) "
+                  r"times the bare lane", text).groups()
+    core_lane = verdict["core_lane_transistors"]
+    check("§15: the shader-core lane's cost (costs.json)", True,
+          (lane["regs"], lane["waves"]) == (16, 4) and number(q[0]) == lane["transistors"] and
+          number(q[1]) == lane["flip_flops"] and number(q[2]) == lane["register_bits"] and
+          number(q[3]) == issue["transistors"] and int(q[4]) == verdict["core_simd"] and
+          number(q[5]) == round(core_lane) and stated_close(q[6], core_lane / fma["transistors"]))
+    pts = verdict["points"]
+
+    def tally(key, displaced):
+        r = [v[key] / v["a"] for v in pts if v["displaced"] == displaced]
+        return sum(x < 1 for x in r), len(r), min(r), max(r)
+
+    at = {(v["K"], v["workload"], v["displaced"]): v for v in pts}
+    q = re.search(r"on (\d+) of (\d+) points against lanes that run the shader \(lanes / unit ([\d.]+)–([\d.]+)\); and if the "
+                  r"GE's own work ran on the lanes too \(the model\), the lanes' lead falls from (\d+)–(\d+) times to "
+                  r"([\d.]+)–([\d.]+), and the unit wins (\d+) of (\d+) points \(K = 8, L = 8: ([\d.]+) against ([\d.]+), a tie\)",
+                  text).groups()
+    s1, c2, s2 = tally("s1", False), tally("c2", False), tally("s2", False)
+    k8 = at[(8, "L=8", False)]
+    check("§15: the verdict without displacement, shader-core lanes (verdict.json)", True,
+          int(q[0]) == s1[0] and int(q[1]) == s1[1] and stated_close(q[2], s1[2]) and stated_close(q[3], s1[3]) and
+          stated_close(q[4], c2[2]) and stated_close(q[5], c2[3]) and stated_close(q[6], s2[2]) and
+          stated_close(q[7], s2[3]) and int(q[8]) == s2[0] and int(q[9]) == s2[1] and stated_close(q[10], k8["s2"])
+          and stated_close(q[11], k8["a"]))
+    q = re.search(r"With the sine the lanes still win everywhere\*\*, by ([\d.]+)–([\d.]+) times instead of ([\d.]+)–([\d.]+) "
+                  r"\(K = 8, L = 8: ([\d.]+) against ([\d.]+) with (\d+) lanes\)", text).groups()
+    s1d, c1d = tally("s1", True), tally("c1", True)
+    k8d = at[(8, "L=8", True)]
+    check("§15: the verdict with the sine, shader-core lanes (verdict.json)", True,
+          s1d[0] == 0 and stated_close(q[0], s1d[2]) and stated_close(q[1], s1d[3]) and stated_close(q[2], c1d[2]) and
+          stated_close(q[3], c1d[3]) and stated_close(q[4], k8d["s1"]) and stated_close(q[5], k8d["a"]) and
+          int(q[6]) == k8d["core_lanes"])
+    q = re.search(r"LUT RAM \((\d+) flip-flops, ([\d ]+) LUTs against the bare lane's ([\d ]+)\)", text).groups()
+    check("§15: the lanes on Xilinx (costs.json)", True,
+          int(q[0]) == lane["xilinx"]["flip_flops"] and number(q[1]) == lane["xilinx"]["luts"] and
+          number(q[2]) == fma["xilinx"]["luts"])
+    summary = " ".join(section("docs/results/load-balancing.md", "## Answer in short").split())
+    q = re.search(r"operand network and share of the issue logic: ([\d.]+) times a bare lane\), the lanes' lead with displacement "
+                  r"shrinks to ([\d.]+)–([\d.]+) times, and without it the unit wins (\d+) of (\d+) points", summary).groups()
+    check("Answer in short: shader-core lanes (verdict.json)", True,
+          stated_close(q[0], core_lane / fma["transistors"]) and stated_close(q[1], s1d[2]) and
+          stated_close(q[2], s1d[3]) and int(q[3]) == s1[0] and int(q[4]) == s1[1])
+    row = next(l for l in (ROOT / "docs/results/load-balancing.md").read_text().splitlines()
+               if l.startswith("| a GE that displaces"))
+    q = re.search(r"lanes costed as a shader core's, ([\d.]+)–([\d.]+) times \(([\d.]+) against ([\d.]+)\)", row).groups()
+    check("What to pick: a GE that displaces, shader-core lanes (verdict.json)", True,
+          stated_close(q[0], s1d[2]) and stated_close(q[1], s1d[3]) and stated_close(q[2], k8d["s1"]) and
+          stated_close(q[3], k8d["a"]))
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--tessim", required=True)
@@ -614,6 +674,7 @@ def main() -> int:
     copies_rows(check, a.tessim)
     scene_claims(check)
     core_claims(check)
+    ge_fair_claims(check)
     if failures:
         print("doc_claims_test: stale: " + ", ".join(failures), file=sys.stderr)
         return 1
