@@ -572,6 +572,13 @@ def core_claims(check):
     check("What to pick: the wide-core row (cores.json)", True,
           max(herd["simd32"]["k_max"], herd["cu64"]["k_max"]) < float(q[0]) and stated_close(q[1], herd["vec4"]["k_min"])
           and stated_close(q[2], herd["vec4"]["k_max"]))
+    limits = " ".join((ROOT / "docs/silicon.md").read_text().split())
+    q = re.search(r"a four-lane core at (\d+) MHz gives K = ([\d.]+)–([\d.]+) in the configurations' cycles, a (\d+)-lane one at "
+                  r"(\d+) MHz K = ([\d.]+)–([\d.]+);", limits).groups()
+    check("silicon.md: the GE on its own clock (cores.json)", True,
+          int(q[0]) == vec4["mhz"] and stated_close(q[1], herd["vec4"]["k_min"]) and stated_close(q[2], herd["vec4"]["k_max"])
+          and int(q[3]) == simd["lanes"] and int(q[4]) == simd["mhz"] and stated_close(q[5], herd["simd32"]["k_min"])
+          and stated_close(q[6], herd["simd32"]["k_max"]))
     scenes = " ".join(section("docs/scenes.md", "## How the unit is sized").split())
     q = re.search(r"\(four lanes at (\d+) MHz; (\d+) lanes at (\d+) MHz; (\d+) lanes at (\d+) MHz\).*?The four-lane core is the "
                   r"herd's limit \(([\d.]+) frames per second at best\) and two INT blocks are enough; with 32 or 64 lanes K "
