@@ -59,7 +59,12 @@ TEST(SimCli, RejectsBadConfigurationsNamingTheKey) {
                         Case{"{}", "--int 0", "int_blocks"},
                         Case{"{}", "--normals derivative", "normals"},
                         Case{"{}", "--cpg magic", "cpg_mapping"},
-                        Case{"{}", "--stall 2", "gpe_stall_prob"}}) {
+                        Case{"{}", "--stall 2", "gpe_stall_prob"},
+                        // The shader-core geometry engine: its ranges, and what it cannot be combined with.
+                        Case{R"({"ge_core_lanes": 4, "units": 2})", "", "ge_core_lanes"},
+                        Case{"{}", "--ge-core-lanes 8 --ge-core-mhz 0", "ge_core_mhz"},
+                        Case{"{}", "--ge-core-lanes 8 --ge-core-fifo 0", "ge_core_fifo"},
+                        Case{"{}", "--ge-core-lanes 8 --chunks 2", "--chunks"}}) {
     std::ofstream(cfg) << c.json;
     const CommandResult r =
         run_tessim("sim --config " + cfg.string() + " " + c.flags + " --stats " + stats.string());
