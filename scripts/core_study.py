@@ -30,9 +30,9 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SCENES = ["herd", "figures"]
-TARGET_FPS = 60.0
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_study import FLAGS, ROOT, SCENES, TARGET_FPS, check_tables, label, silicon_configurations  # noqa: E402
+
 WITHIN = 0.05  # "needs N INT blocks": the fewest N within 5 % of the best frame
 # The stated cores: lanes, issue width, clock (MHz), and what each stands for.
 CORES = [
@@ -44,18 +44,11 @@ CORES = [
      "about": "a 64-lane compute unit (four SIMD16 taking one wave instruction a cycle between them)"},
 ]
 FIFO = 64
-FLAGS = [("int_blocks", "--int-blocks"), ("cpg_lanes", "--cpg-lanes"), ("cpg_digit_bits", "--cpg-digit-bits"),
-         ("cpg_product_reg", "--cpg-product-reg"), ("int_latency", "--int-latency"), ("cp_buffers", "--cp-buffers")]
 # The GE's programs beyond its own work, for the K table (on Wuson at L = 4, a 100 MHz unit).
 PROGRAMS = [("own work (transform, light)", []), ("+ sine displacement", ["--displace", "sine", "--amplitude", "0.02", "--frequency", "10"]),
             ("+ noise displacement", ["--displace", "noise", "--amplitude", "0.02", "--frequency", "10"]),
             ("+ evaluation of the patch (evaluation gpe)", ["--evaluation", "gpe"])]
 PROGRAM_UNIT_MHZ = 100.0
-
-
-def label(c):
-    return (f"N={c['int_blocks']} {c['cpg_lanes']}x{c['cpg_digit_bits']}"
-            + (" reg" if c["cpg_product_reg"] != "0" else "") + f" Λ={c['int_latency']} Nb={c['cp_buffers']}")
 
 
 def core_flags(core, unit_mhz):
@@ -158,18 +151,10 @@ def main():
     ap.add_argument("--check", action="store_true")
     args = ap.parse_args()
     if args.check:
-        with open(os.path.join(args.out, "cores.json")) as f:
-            doc = json.load(f)
-        with open(os.path.join(args.out, "cores.md")) as f:
-            same = f.read() == markdown(doc)
-        picks_same = doc["picks"] == summarize(doc["rows"])
-        print(f"core_study: cores.md {'matches' if same else 'differs from'} cores.json; picks "
-              f"{'match' if picks_same else 'differ from'} the rows")
-        return 0 if same and picks_same else 1
+        return check_tables(args.out, "cores", markdown, summarize, "core_study")
     if not args.tessim:
         sys.exit("core_study: --tessim is required (except with --check)")
-    with open(os.path.join(ROOT, "docs/results/silicon/configurations.csv")) as f:
-        configs = list(csv.DictReader(f))
+    configs = silicon_configurations()
     os.makedirs(args.out, exist_ok=True)
     with tempfile.TemporaryDirectory() as scratch, concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         programs = {name: {c["name"]: pool.submit(program_k, args.tessim, c, flags, scratch) for c in CORES}

@@ -37,6 +37,25 @@ FLAGS = [("int_blocks", "--int-blocks"), ("cpg_lanes", "--cpg-lanes"), ("cpg_dig
          ("cpg_product_reg", "--cpg-product-reg"), ("int_latency", "--int-latency"), ("cp_buffers", "--cp-buffers")]
 
 
+def silicon_configurations():
+    """The configurations characterized in silicon, each with its own clock and area."""
+    with open(os.path.join(ROOT, "docs/results/silicon/configurations.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def check_tables(out, stem, markdown, summarize, tool):
+    """--check: OUT/STEM.md is what `markdown` makes of OUT/STEM.json, and its picks what `summarize`
+    makes of its rows; 0 when both hold."""
+    with open(os.path.join(out, f"{stem}.json")) as f:
+        doc = json.load(f)
+    with open(os.path.join(out, f"{stem}.md")) as f:
+        same = f.read() == markdown(doc)
+    picks_same = doc["picks"] == summarize(doc["rows"])
+    print(f"{tool}: {stem}.md {'matches' if same else 'differs from'} {stem}.json; picks "
+          f"{'match' if picks_same else 'differ from'} the rows")
+    return 0 if same and picks_same else 1
+
+
 def label(c):
     return (f"N={c['int_blocks']} {c['cpg_lanes']}x{c['cpg_digit_bits']}"
             + (" reg" if c["cpg_product_reg"] != "0" else "") + f" Λ={c['int_latency']} Nb={c['cp_buffers']}")
@@ -132,18 +151,10 @@ def main():
     ap.add_argument("--check", action="store_true")
     args = ap.parse_args()
     if args.check:
-        with open(os.path.join(args.out, "study.json")) as f:
-            doc = json.load(f)
-        with open(os.path.join(args.out, "study.md")) as f:
-            same = f.read() == markdown(doc)
-        picks_same = doc["picks"] == summarize(doc["rows"])
-        print(f"scene_study: study.md {'matches' if same else 'differs from'} study.json; picks "
-              f"{'match' if picks_same else 'differ from'} the rows")
-        return 0 if same and picks_same else 1
+        return check_tables(args.out, "study", markdown, summarize, "scene_study")
     if not args.tessim:
         sys.exit("scene_study: --tessim is required (except with --check)")
-    with open(os.path.join(ROOT, "docs/results/silicon/configurations.csv")) as f:
-        configs = list(csv.DictReader(f))
+    configs = silicon_configurations()
     os.makedirs(args.out, exist_ok=True)
     with tempfile.TemporaryDirectory() as scratch, concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         jobs = [pool.submit(run, args.tessim, s, c, k, scratch) for s in SCENES for k in GE_CYCLES for c in configs]
