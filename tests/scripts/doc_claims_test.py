@@ -557,7 +557,7 @@ def core_claims(check):
     check("§17: the figures scene's pick for every core (cores.json)", True,
           all(p["meets_60fps"] and p["pick"] == "N=2 1x1 reg Λ=3 Nb=4" and stated_close(q[0], p["area_mm2"]) and
               stated_close(q[1], p["clock_mhz"]) for p in fig))
-    check("§17: the FIFO depth (cores.json)", True, f"cross-clock FIFO of {doc['fifo']} vertices" in text)
+    check("§17: the FIFO depth (cores.json)", True, f"The cross-clock FIFO holds {doc['fifo']} vertices" in text)
     summary = " ".join(section("docs/results/load-balancing.md", "## Answer in short").split())
     q = re.search(r"K is ([\d.]+)–([\d.]+) for a four-lane vertex shader at (\d+) MHz .*? K falls below ([\d.]+), .*? "
                   r"still ([\d.]+) frames per second on the herd scene, where 60 would take ([\d.]+) vertices per cycle",
