@@ -10,7 +10,6 @@ constexpr int kBasisOps = 2 + 3 + 3 + 6 + 2;
 // Position: ten control points times their basis value, three components each (a multiply, then
 // multiply-adds).
 constexpr int kPositionOps = 10 * 3;
-constexpr GeOps kNormalize = kNormalizeOps;
 
 }  // namespace
 
@@ -24,14 +23,14 @@ GeOps evaluation_ops(NormalMode normals) {
     // Derivative: not offered by the unit or the GE model (validate()).
     ops.alu += 2 + 6 * 3;
   }
-  ops.alu += kNormalize.alu;
-  ops.sfu += kNormalize.sfu;
+  ops.alu += kNormalizeOps.alu;
+  ops.sfu += kNormalizeOps.sfu;
   return ops;
 }
 
 GeOps displacement_ops(DisplaceKind kind) {
   // Blinn's normal given g: g·N (3), t = g - (g·N) N (3 multiply-adds), N - t (3), normalize.
-  constexpr GeOps kBlinn{3 + 3 + 3 + kNormalize.alu, kNormalize.sfu, 0};
+  constexpr GeOps kBlinn{3 + 3 + 3 + kNormalizeOps.alu, kNormalizeOps.sfu, 0};
   switch (kind) {
     case DisplaceKind::None: return {};
     case DisplaceKind::Sine: {

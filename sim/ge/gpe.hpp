@@ -129,7 +129,6 @@ class Gpe {
   std::uint64_t drain_cycles() const;
 
   const GpeStats& stats() const { return stats_; }
-  bool core() const { return core_; }
   const GeCoreStats& core_stats() const { return core_stats_; }
   int cycles_per_vertex() const { return cycles_per_vertex_; }
   double stall_prob() const { return stall_prob_; }
