@@ -252,7 +252,7 @@ def evaluate(expr: str, data: Data):
              "min": min, "max": max, "sum": sum, "len": len, "abs": abs, "round": round, "sorted": sorted,
              "any": any, "all": all, "math": math, "float": float, "int": int, "set": set, "next": next,
              "zip": zip, "range": range, "enumerate": enumerate, "list": list, "dict": dict, "str": str}
-    return eval(compile(tree, "<claim>", "eval"), {"__builtins__": {}}, scope)
+    return eval(compile(tree, "<claim>", "eval"), {"__builtins__": {}, **scope})  # globals: comprehensions see them
 
 
 def claim_files():
