@@ -35,8 +35,8 @@ j(file), rows(file, **where), row(file, **where), table(file, heading, column=No
 cell(file, heading, first_cell, column) (a number), text(file)
 and may use num(x), min, max, sum, len, abs, round, sorted, any, all, math; `file` is an alias
 of the claim file's "data" or a path from the repository root. A number passes when the value
-rounds to it at the decimals it is written with (1 960 and 14 % are whole numbers, 0.0480 has
-four decimals), or lies within the relative tolerance `tol` of the claim.
+rounds to it at the decimals it is written with (1 960, 1,960 and 14 % are whole numbers, 0.0480
+has four decimals), or lies within the relative tolerance `tol` of the claim.
 """
 import argparse
 import ast
@@ -53,12 +53,15 @@ CLAIMS_DIR = ROOT / "docs/results/claims"
 LABEL_KINDS = {"input", "formula", "design", "outside", "target"}
 LOADERS = {"j", "rows", "row", "table", "cell", "text"}
 
-NUMBER = re.compile(r"(?<![\w.])[-−]?(?:\d{1,3}(?:[ \u2009\u202f]\d{3})+|\d+)(?:\.\d+)?(?![\w]|\.\d)")
+NUMBER = re.compile(r"(?<![\w.])[-−]?(?:\d{1,3}(?:[ \u2009\u202f]\d{3})+(?![\d,])|\d{1,3}(?:,\d{3})+(?![\d,])|\d+)"
+                    r"(?:\.\d+)?(?![\w]|\.\d)")
 _PARAM = r"(?:L|N|K|V|Λ|r|Ec|Nb|R|W|I|D|β)"
-_SEQ = r"\d+(?:\s*(?:–|…|\.\.|,|and|or)\s*\d+)*"
+_SEQ = r"\d+(?:\s*(?:–|…|\.\.)\s*\d+)*"   # a value or a range; a list after a comma may be a result
 AUTO_LABELS = [
     re.compile(rf"§{_SEQ}"),
-    re.compile(rf"(?<![\w]){_PARAM}\s*(?:=|≤|≥|<|>|∈\s*\{{)\s*{_SEQ}(?![.\d])"),
+    re.compile(rf"(?<![\w]){_PARAM}\s*(?:=|≤|≥|<|>)\s*{_SEQ}(?![.\d])"),
+    re.compile(rf"(?<![\w]){_PARAM}\s*∈\s*\{{[\d, ]+\}}"),
+    re.compile(r"(?<![\w])β\s*(?:=|≤|≥|<|>)\s*\d+\.\d+"),   # the band's width, a setting
     re.compile(r"\b\d+x\d+(?: reg)?\s*×\s*\d+\b"),
     re.compile(r"^\s*\d+\. ", re.M),
 ]
@@ -76,7 +79,7 @@ def masked(text: str) -> str:
 
     for pattern, flags in ((r"^```.*?^```", re.M | re.S),
                            (r"<!-- generated:.*?<!-- end generated -->", re.S),
-                           (r"<!--.*?-->", re.S), (r"`[^`\n]*`", 0), (r"\]\([^)]*\)", 0), (r"^#+ .*$", re.M),
+                           (r"<!--.*?-->", re.S), (r"`(?:[^`\n]|\n(?![ \t]*\n))*`", 0), (r"!\[[^\]]*\]", 0), (r"\]\([^)]*\)", 0), (r"^#+ .*$", re.M),
                            (r"^\|[-| :]+\|$", re.M)):
         for m in re.finditer(pattern, "".join(out), flags):
             blank(m.start(), m.end())
@@ -84,7 +87,7 @@ def masked(text: str) -> str:
 
 
 def value_of(token: str) -> float:
-    return float(re.sub(r"[ \u2009\u202f]", "", token).replace("−", "-"))
+    return float(re.sub(r"[ ,\u2009\u202f]", "", token).replace("−", "-"))
 
 
 def decimals(token: str) -> int:
@@ -287,6 +290,8 @@ def check_claim_files(docs: dict, files=None):
                 by_text.setdefault(t[2], []).append(t)
             entries = [(k, v, "value") for k, v in c.get("values", {}).items()] + \
                       [(k, v, "label") for k, v in c.get("labels", {}).items()]
+            if not entries:
+                failures.append(f"{where}: neither values nor labels")
             for key, spec_value, kind in entries:
                 text_, _, nth = key.partition("#")
                 found = by_text.get(text_, [])
@@ -388,23 +393,38 @@ def replace_in_doc(path: str, old: str, new: str) -> int:
 
 
 def pending() -> dict:
-    """Sections not yet accounted for: {doc: [heading, ...]} from docs/results/claims/pending.json."""
+    """What is not accounted for yet, from docs/results/claims/pending.json: {doc: [entry, ...]},
+    an entry a section heading or {"quote": ..., "why": ...} (a quote unique in the doc)."""
     p = CLAIMS_DIR / "pending.json"
     return json.loads(p.read_text())["pending"] if p.is_file() else {}
 
 
 def ratchet(docs: dict) -> list:
-    """Uncovered numbers outside the pending sections, and pending sections with none left."""
+    """Uncovered numbers outside the pending sections and quotes, and pending entries with none left."""
     problems = []
-    for path, sections in pending().items():
+    held = {path: [] for path in docs}
+    for path, entries in pending().items():
+        if path not in docs:
+            problems.append(f"pending.json: {path} is not one of {sorted(docs)}")
+            continue
         doc = docs[path]
-        for heading in sections:
-            if not doc.uncovered(heading):
-                problems.append(f"{path}: {heading!r} is accounted for; remove it from pending.json")
+        for entry in entries:
+            try:
+                if isinstance(entry, str):
+                    span, name = doc.section_bounds(entry), repr(entry)
+                else:
+                    if not entry.get("why"):
+                        problems.append(f"pending.json: {path}: {entry.get('quote')!r} gives no reason")
+                    span, name = doc.find_quote(entry["quote"]), repr(" ".join(entry["quote"].split())[:60])
+            except (KeyError, ValueError) as e:
+                problems.append(f"pending.json: {path}: {e}")
+                continue
+            held[path].append(span)
+            if not [t for t in doc.uncovered() if span[0] <= t[0] < span[1]]:
+                problems.append(f"{path}: {name} is accounted for; remove it from pending.json")
     for doc in docs.values():
-        held = [doc.section_bounds(h) for h in pending().get(doc.path, {})]
         for start, end, tok in doc.uncovered():
-            if not any(lo <= start < hi for lo, hi in held):
+            if not any(lo <= start < hi for lo, hi in held[doc.path]):
                 ctx = " ".join(doc.text[max(0, start - 50):end + 30].split())
                 problems.append(f"{doc.path}:{doc.line(start)}: {tok} is neither checked nor labelled … {ctx} …")
     return problems

@@ -154,6 +154,18 @@ class ClaimsTest(unittest.TestCase):
         self.assertEqual(len(problems), 1)
         self.assertTrue(re.search(r"'## 2\.' is accounted for; remove it", problems[0]))
 
+    def test_a_pending_quote_holds_its_numbers_only(self):
+        pending = self.root / "docs/results/claims/pending.json"
+        pending.write_text(json.dumps({"pending": {"docs/results/page.md": [
+            {"quote": "runs 9 717 633 cycles", "why": "an example"}, "## 1.", "## 2."]}}))
+        self.assertEqual(claims.ratchet(claims.load_docs()), [])
+        pending.write_text(json.dumps({"pending": {"docs/results/page.md": [
+            {"quote": "runs 9 717 633 cycles"}, {"quote": "0.5 and", "why": "x"}, "## 2."]}}))
+        problems = claims.ratchet(claims.load_docs())
+        self.assertIn("gives no reason", problems[0])
+        left = [p for p in problems if "neither checked nor labelled" in p]
+        self.assertEqual([re.search(r"page.md:\d+: (\S+)", p).group(1) for p in left], ["0.0480", "14", "0.5"])
+
 
 if __name__ == "__main__":
     unittest.main()
