@@ -13,7 +13,8 @@ docs/microarchitecture.md §12), measures with `tessim sim`:
                   fastest when none does; its transistors from scripts/costs.py (Yosys records);
     (b) gpe       evaluation on the GE (evaluation gpe, cpg_mapping host: the host computes the ten
                   and six coefficients, Boubekeur & Schlick); no unit transistors;
-    (c) gpe+lanes the GE given the transistors of (a) as extra ALU lanes, each an FP32 fused
+    (c) gpe+lanes the GE given the transistors of (a), less the fixed-function pattern generator it keeps
+                  in front of them (the DPG and a factor setup unit, their Yosys records), as extra ALU lanes, each an FP32 fused
                   multiply-add lane of docs/results/ge_lane/costs.json: (c1, measured) the lanes
                   serve the shader's evaluation and displacement, K unchanged; (c2, a model from the
                   measured shader slots) they serve all of the GE's work, its own K * 4 issue slots
@@ -99,6 +100,19 @@ def lane_transistors():
     return lane_costs()["ge_fma_lane"]["transistors"]
 
 
+FRONT_END = ("tess_dpg", "tess_fsu", "tess_fsu_edge")  # the fixed-function tessellator the lanes sit behind
+
+
+def front_end_transistors():
+    """The pattern generator (c) keeps in front of its lanes, as Direct3D 11 does: the DPG and one
+    factor setup unit of the default configuration's Yosys records (they do not depend on N, the
+    contexts or the CPG); charged to the lanes' budget."""
+    sys.path.insert(0, HERE)
+    import cost_records  # noqa: E402
+    records = cost_records.cost({}, require_cached=True)["records"]
+    return sum(r["transistors"] for r in records if r["module"] in FRONT_END)
+
+
 def core_lane_transistors():
     """A lane of a shader core (c*): the FP32 lane with its register file, operand network and
     write-back (ge_shader_lane), and its share of the issue logic of a SIMD of CORE_SIMD lanes."""
@@ -142,13 +156,13 @@ def cost_units(tessim, out_csv, jobs):
 def simulate_ge(tessim, units_csv, out_csv, jobs):
     """(b) and (c) for every workload and K, (c) sized by the (a) that the unit rows choose."""
     picks = pick_units(read_csv(units_csv))
-    lane, core_lane = lane_transistors(), core_lane_transistors()
+    lane, core_lane, front_end = lane_transistors(), core_lane_transistors(), front_end_transistors()
     base = {"evaluation": "gpe", "cpg_mapping": "host", "cpg_lanes": 1, "cpg_copies": 1, "cpg_product_reg": 0,
             "normals": "quadratic"}
     points = []
     for name, displaced, args in workloads():
         for k in KS:
-            budget = float(picks[(name, displaced, k)]["cost_unit_transistors"])
+            budget = float(picks[(name, displaced, k)]["cost_unit_transistors"]) - front_end
             lanes = BASE_LANES + int(budget // lane)
             core_lanes = BASE_LANES + int(budget // core_lane)
             for arch, params in (("gpe", dict(base, gpe_cycles=k, ge_alu_lanes=BASE_LANES)),
@@ -254,6 +268,7 @@ def report(units_csv, ge_csv, out_dir):
     lines += bus_section()
     with open(os.path.join(out_dir, "verdict.json"), "w") as f:
         json.dump({"lane_transistors": lane, "core_lane_transistors": core_lane, "core_simd": CORE_SIMD,
+                   "front_end_transistors": front_end_transistors(), "front_end_modules": list(FRONT_END),
                    "points": verdict}, f, indent=1)
     with open(os.path.join(out_dir, "study.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -64,6 +64,7 @@ AUTO_LABELS = [
     re.compile(r"(?<![\w])β\s*(?:=|≤|≥|<|>)\s*\d+\.\d+"),   # the band's width, a setting
     re.compile(r"\b\d+x\d+(?: reg)?\s*×\s*\d+\b"),
     re.compile(r"^\s*\d+\. ", re.M),
+    re.compile(r"Direct3D\s+\d+"),   # a standard's name
 ]
 
 

@@ -698,7 +698,7 @@ def ge_fair_claims(check):
     at = {(v["K"], v["workload"], v["displaced"]): v for v in pts}
     q = re.search(r"on (\d+) of (\d+) points against lanes that run the shader \(lanes / unit ([\d.]+)–([\d.]+)\); and if the "
                   r"GE's own work ran on the lanes too \(the model\), the lanes' lead falls from (\d+)–(\d+) times to "
-                  r"([\d.]+)–([\d.]+), and the unit wins (\d+) of (\d+) points \(K = 8, L = 8: ([\d.]+) against ([\d.]+), a tie\)",
+                  r"([\d.]+)–([\d.]+), and the unit wins (\d+) of (\d+) points \(K = 8, L = 8: ([\d.]+) against ([\d.]+)\)",
                   text).groups()
     s1, c2, s2 = tally("s1", False), tally("c2", False), tally("s2", False)
     k8 = at[(8, "L=8", False)]
