@@ -18,7 +18,8 @@ Anything else is uncovered, and `doc_claims` fails on it. Run
     /usr/bin/python3 tests/scripts/claims.py --uncovered [--doc NAME] [--section '## 12.']
 to list the uncovered numbers with their line and context, and
     /usr/bin/python3 tests/scripts/claims.py --check [--file CLAIMS.json]
-to evaluate the claim files alone (no tessim needed).
+to evaluate the claim files alone (no tessim needed); `--check --fix` rewrites every number that
+disagrees with its data to what the data give and prints each change for review.
 
 A claim file is JSON:
     {"doc": "docs/results/load-balancing.md",
@@ -263,8 +264,22 @@ def claim_files():
     return sorted(p for p in CLAIMS_DIR.glob("*.json") if p.name != "pending.json") if CLAIMS_DIR.is_dir() else []
 
 
-def check_claim_files(docs: dict, files=None):
-    """Evaluates every claim; marks what it covers in `docs`. Returns the failures."""
+def written_as(token: str, value: float) -> str:
+    """`value` written the way `token` is: its decimals, its thousands separator, its minus sign."""
+    digits = decimals(token)
+    text = f"{abs(value):,.{digits}f}"
+    if re.search(r"\d[ \u2009\u202f]\d", token):
+        text = text.replace(",", re.search(r"\d([ \u2009\u202f])\d", token).group(1))
+    elif "," not in token:
+        text = text.replace(",", "")
+    if value < 0 and round(abs(value), digits) != 0:
+        text = ("−" if "−" in token or not token.startswith("-") else "-") + text
+    return text
+
+
+def check_claim_files(docs: dict, files=None, stale=None):
+    """Evaluates every claim; marks what it covers in `docs`. Returns the failures; appends each
+    number that disagrees with its data to `stale` as (claim file, claim index, key, tokens, value)."""
     failures = []
     for path in files or claim_files():
         name = path.relative_to(ROOT)
@@ -319,6 +334,8 @@ def check_claim_files(docs: dict, files=None):
                 if not agrees(text_, value, float(c.get("tol", 0))):
                     failures.append(f"{where}: the doc says {text_}, the data give {value!r} "
                                     f"({doc.path}:{doc.line(found[0][0])})")
+                    if stale is not None and isinstance(value, (int, float)) and not c.get("tol"):
+                        stale.append((path, i, key, found, value))
                     continue
                 for t in found:
                     doc.covered[t[0]] = f"claim {name}"
@@ -376,6 +393,52 @@ class Recorder:
                 for a, b in spans:
                     if b > a:
                         doc.cover(*base(a, b), "doc_claims_test.py")
+
+
+def fix_stale(docs: dict, stale: list) -> list:
+    """Rewrites each stale number to what its data give, written as the doc writes it, in the doc
+    and in its claim (the quote and the key); returns the changes, for review: a changed number
+    can change what its sentence concludes."""
+    edits = {}  # doc path -> {offset: (end, old, new)}
+    renames = {}  # (claim file, index) -> [(key, new key)]
+    for path, index, key, found, value in stale:
+        spec = json.loads(path.read_text())
+        doc = docs[spec["doc"]]
+        text_, _, nth = key.partition("#")
+        new = written_as(text_, value)
+        for start, end, tok in found:
+            edits.setdefault(doc.path, {})[start] = (end, tok, new)
+        renames.setdefault((path, index), []).append((key, new + ("#" + nth if nth else "")))
+    spans = {}
+    for path, index in renames:
+        spec = json.loads(path.read_text())
+        c = spec["claims"][index]
+        spans[(path, index)] = docs[spec["doc"]].find_quote(c["quote"], c.get("section")), spec["doc"]
+    changes = []
+    for doc_path, at in edits.items():
+        doc = docs[doc_path]
+        text = doc.text
+        shift = {}
+        for start in sorted(at, reverse=True):
+            end, old, new = at[start]
+            text = text[:start] + new + text[end:]
+            shift[start] = (end, len(new) - (end - start))
+            changes.append(f"{doc_path}:{doc.line(start)}: {old} -> {new}")
+        (ROOT / doc_path).write_text(text)
+        for (path, index), ((lo, hi), d) in spans.items():
+            if d != doc_path:
+                continue
+            delta_lo = sum(dl for s0, (e0, dl) in shift.items() if e0 <= lo)
+            delta_hi = sum(dl for s0, (e0, dl) in shift.items() if e0 <= hi)
+            spec = json.loads(path.read_text())
+            c = spec["claims"][index]
+            c["quote"] = " ".join(text[lo + delta_lo:hi + delta_hi].split())
+            for field in ("values", "labels"):
+                if field in c:
+                    names = dict(renames[(path, index)])
+                    c[field] = {names.get(k, k): v for k, v in c[field].items()}
+            path.write_text(json.dumps(spec, indent=1, ensure_ascii=False) + "\n")
+    return sorted(changes)
 
 
 def replace_in_doc(path: str, old: str, new: str) -> int:
@@ -485,13 +548,23 @@ def main() -> int:
     ap.add_argument("--tessim", help="tessim binary for doc_claims_test's simulated checks")
     ap.add_argument("--doc", help="only this doc (a substring of its path)")
     ap.add_argument("--section", help="only this section, e.g. '## 12.'")
+    ap.add_argument("--fix", action="store_true",
+                    help="rewrite every number that disagrees with its data to what the data give, as the doc "
+                         "writes numbers, in the doc and its claim; prints each change: review them, since a "
+                         "changed number can change a conclusion")
     ap.add_argument("--replace", nargs=3, metavar=("DOC", "OLD", "NEW"),
                     help="replace the one occurrence of OLD in DOC, under a lock shared by all editors")
     a = ap.parse_args()
     if a.replace:
         return replace_in_doc(*a.replace)
     docs = load_docs()
-    failures = check_claim_files(docs, [f.resolve() for f in a.file] if a.file else None)
+    stale = []
+    failures = check_claim_files(docs, [f.resolve() for f in a.file] if a.file else None, stale)
+    if a.fix:
+        for change in fix_stale(docs, stale):
+            print(change)
+        docs = load_docs()
+        failures = check_claim_files(docs, [f.resolve() for f in a.file] if a.file else None)
     for f in failures:
         print(f"claims: {f}", file=sys.stderr)
     if a.uncovered:

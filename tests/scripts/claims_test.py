@@ -84,6 +84,27 @@ class ClaimsTest(unittest.TestCase):
         self.assertIn("the doc says 0.0480, the data give 0.0482", failures[0])
         self.assertIn("page.md:7", failures[0])
 
+    def test_fix_rewrites_stale_numbers_in_the_doc_and_the_claim(self):
+        path = self.write_claims([{"quote": "the best is 0.0480 vertices/cycle, 14 % idle", "section": "## 1.",
+                                   "values": {"0.0480": "j('d')['best']", "14": "100 * j('d')['idle']"}},
+                                  {"quote": "runs 9 717 633 cycles", "values": {"9 717 633": "j('d')['cycles']"}}])
+        changed = json.loads(self.data.read_text())
+        changed.update(best=0.05126, idle=0.0951, cycles=12345678)
+        self.data.write_text(json.dumps(changed))
+        docs, stale = claims.load_docs(), []
+        self.assertEqual(len(claims.check_claim_files(docs, stale=stale)), 3)
+        self.assertEqual(claims.fix_stale(docs, stale), ["docs/results/page.md:3: 9 717 633 -> 12 345 678",
+                                                         "docs/results/page.md:7: 0.0480 -> 0.0513",
+                                                         "docs/results/page.md:7: 14 -> 10"])
+        docs, failures = self.run_claims()
+        self.assertEqual(failures, [])
+        text = (self.root / "docs/results/page.md").read_text()
+        self.assertIn("runs 12 345 678 cycles", text)
+        self.assertIn("the best is 0.0513 vertices/cycle, 10 % idle", text)
+        self.assertIn("The best is 0.0480 again", text)  # the other 0.0480 is not this claim's
+        spec = json.loads(path.read_text())
+        self.assertEqual(sorted(spec["claims"][0]["values"]), ["0.0513", "10"])
+
     def test_rounding_at_the_written_decimals(self):
         self.assertTrue(claims.agrees("0.0480", 0.04796, 0))
         self.assertFalse(claims.agrees("0.0480", 0.04806, 0))
