@@ -652,12 +652,30 @@ def characterize(tessim, variant, name, jobs, work_root):
 
 def main(argv):
     ap = argparse.ArgumentParser(prog="energy.py", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--tessim", required=True, help="a tessim whose RTL build was Verilated with coverage")
+    ap.add_argument("--tessim", help="a tessim whose RTL build was Verilated with coverage")
     ap.add_argument("--variant", default="n2", help="its RTL build (default n2)")
     ap.add_argument("--name", help="the result's name (default: the build's)")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", default=str(REPO / "build-energy"), help="mapped netlists and the workloads' runs")
+    ap.add_argument("--refresh-clock-gate", metavar="NAME", action="append",
+                    help="recompute only the clock gate's figures of the committed characterization NAME from the "
+                         "library (its area, leakage and clock energy depend on the library alone)")
     args = ap.parse_args(argv)
+    if args.refresh_clock_gate:
+        lib = silicon.library()
+        functions, power = gate_activity.liberty_functions(lib.text), gate_activity.liberty_power(lib.text)
+        for name in args.refresh_clock_gate:
+            path = OUT / f"{name}.json"
+            result = json.loads(path.read_text())
+            if result["library_sha256"] != lib.digest:
+                print(f"energy.py: error: {path}: characterized on another library; rerun it whole", file=sys.stderr)
+                return 1
+            before, result["clock_gate"] = result["clock_gate"], clock_gate(lib, functions, power)
+            path.write_text(json.dumps(result, indent=1) + "\n")
+            print(f"{path.relative_to(REPO)}: clock gate {before['area_um2']} -> {result['clock_gate']['area_um2']} um2")
+        return 0
+    if not args.tessim:
+        ap.error("--tessim is required to characterize")
     try:
         result = characterize(args.tessim, args.variant, args.name or args.variant, args.jobs, args.work)
     except (EnergyError, silicon.SiliconError, gate_activity.NetlistError) as e:

@@ -146,6 +146,16 @@ def cell_library(text):
     return cells
 
 
+def lef_areas(lef):
+    """Macro name -> area in um2 (SIZE W BY H) from a LEF file; {} when there is none."""
+    try:
+        text = Path(lef).read_text()
+    except OSError:
+        return {}
+    return {m.group(1): float(m.group(2)) * float(m.group(3))
+            for m in re.finditer(r"^MACRO\s+(\w+)\s*$.*?^\s*SIZE\s+([\d.]+)\s+BY\s+([\d.]+)", text, re.M | re.S)}
+
+
 class Library:
     """The library a run maps onto, written once to a work directory for Yosys, ABC and OpenSTA."""
 
@@ -154,6 +164,12 @@ class Library:
         self.text = library_text(liberty)
         self.digest = hashlib.sha256(self.text.encode()).hexdigest()
         self.cells = cell_library(self.text)
+        # OSU018's Liberty gives its LATCH an area of 0; the cell's footprint in the LEF beside it
+        # (5.6 x 10 um) is its area. No mapped record uses a latch; the clock gates are built of one.
+        lef = lef_areas(self.source.with_suffix(".lef"))
+        self.area_from_lef = sorted(c for c, v in self.cells.items() if v["area"] == 0 and c in lef)
+        for c in self.area_from_lef:
+            self.cells[c]["area"] = lef[c]
         if work is None:  # a directory of its own, removed when the process ends
             work = tempfile.mkdtemp(prefix="tessim-silicon-lib-")
             atexit.register(shutil.rmtree, work, True)

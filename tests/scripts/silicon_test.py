@@ -17,6 +17,7 @@
 
 import re
 import sys
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -72,8 +73,12 @@ def main():
         lib = silicon.Library(silicon.LIBERTY, tmp / "lib0")
         (tmp / "lib0").mkdir(exist_ok=True)
         nand_area = lib.cells["NAND2X1"]["area"]
+        check("a cell the Liberty gives no area takes its LEF footprint (OSU018's LATCH: 5.6 x 10 um)",
+              lib.area_from_lef == ["LATCH"] and abs(lib.cells["LATCH"]["area"] - 56.0) < 1e-9,
+              str(lib.area_from_lef))
         bigger = tmp / "bigger.lib"
         bigger.write_text(with_area(original, "NAND2X1", nand_area + 8))
+        shutil.copy(silicon.LIBERTY.with_suffix(".lef"), bigger.with_suffix(".lef"))
         (tmp / "lib1").mkdir()
         lib_bigger = silicon.Library(bigger, tmp / "lib1")
         check("the changed copy changes NAND2X1's area only",
