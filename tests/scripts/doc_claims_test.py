@@ -531,6 +531,62 @@ def quoted_command_outputs(check, tessim):
     check("§15: triangles of the Nyquist rule's factors (the quoted render)", number(q), int(made))
 
 
+def performance_counts(check, tessim):
+    """The deterministic figures of docs/results/performance.md (its speeds are measured, not
+    checked): the shader-core runs' cycles and K, the chunk bound of the million-triangle mesh, the
+    bytes the write benchmark writes, the cycles of the RTL benchmark's workload and of the
+    co-simulation, each from `tessim sim` at the quoted flags (each a fraction of a second)."""
+    path = "docs/results/performance.md"
+    wuson = "/usr/share/assimp/models/PLY/Wuson.ply"
+    text = section(path, "### A shader-core geometry engine")
+    flat = " ".join(text.split())
+    q = re.search(r"Wuson at L = 16 \(([\d ]+) vertices\), `tessim sim Wuson.ply -L 16 --stats S.json ARGS`", flat)
+    rows = re.findall(r"^\| `([^`]+)`(?: \(K = ([\d.]+)\))? \| ([\d ]+) \|", text, re.M)
+    check("performance.md: rows of the shader-core table", 4, len(rows))
+    runs = {args: sim_stats(tessim, [wuson, "-L", "16"] + args.split()) for args, _, _ in rows}
+    check("performance.md: vertices of Wuson at L = 16 (the shader-core runs)", [number(q.group(1))],
+          sorted({st["vertices_out"] for st in runs.values()}))
+    bad = []
+    for args, k, cycles in rows:
+        st = runs[args]
+        if number(cycles) != st["cycles"]:
+            bad.append(f"{args}: {cycles} against {st['cycles']}")
+        if k and not stated_close(k, st["ge"]["core"]["cycles_per_vertex"]):
+            bad.append(f"{args}: K = {k} against {st['ge']['core']['cycles_per_vertex']}")
+    check("performance.md: shader-core table's cycles and K against its runs (cells that disagree)", [], bad)
+    q = re.search(r"The four-lane core takes ([\d.]+) % more cycles than a fixed K = 8: its K is ([\d.]+)\.", flat).groups()
+    four, eight = runs["--ge-core-lanes 4 --ge-core-mhz 200 --unit-mhz 100"], runs["--gpe-cycles 8"]
+    check("performance.md: the four-lane core against K = 8 (its runs)", True,
+          stated_close(q[0], 100 * (four["cycles"] / eight["cycles"] - 1)) and
+          stated_close(q[1], four["ge"]["core"]["cycles_per_vertex"]))
+    # The bound per chunk boundary depends on the configuration alone (statistics.md, Chunked runs:
+    # F = (C + 3) + S + Λ + 2 with uniform factors), so Wuson at big.ply's flags gives big.ply's.
+    text = " ".join(section(path, "## A million-triangle mesh").split())
+    q = re.search(r"cycles, \d+ more than the single run \(bound per boundary: (\d+)\)", text).group(1)
+    bound = sim_stats(tessim, [wuson, "-L", "16", "--chunks", "2"])["chunks"]["boundary_bound"]["longer"]
+    check("performance.md: the bound per chunk boundary at L = 16 (the same flags on Wuson)", int(q), bound)
+    text = " ".join(section(path, "## Float reference, binary PLY output").split())
+    q = re.search(r"Wuson, L = (\d+), ([\d.]+) MB into `/dev/shm`", text).groups()
+    size = 0
+    with subprocess.Popen([tessim, "tessellate", wuson, "-L", q[0], "-o", "-"], stdout=subprocess.PIPE,
+                          stderr=subprocess.DEVNULL) as proc:
+        while block := proc.stdout.read(1 << 20):
+            size += len(block)
+    check(f"performance.md: megabytes bench_write.py writes ({size} bytes)", True,
+          proc.returncode == 0 and stated_close(q[1], size / 1e6))
+    text = " ".join(section(path, "## Verilated RTL versus the cycle model").split())
+    q = re.search(r"\(CPG-bound workload: (\d+) k cycles;", text).group(1)
+    cycles = [sim_stats(tessim, [wuson, "-L", "4", "--int", str(n)])["cycles"] for n in (1, 2, 4)]
+    check(f"performance.md: cycles of rtlbench's workload, N = 1, 2, 4 ({cycles})", True,
+          all(stated_close(q, c / 1e3) for c in cycles))
+    # the co-simulation agrees with the cycle model cycle by cycle, so `tessim sim` at its flags
+    # gives its cycles and vertices (the co-simulation itself takes some 6-12 s)
+    q = re.search(r"--stall 0.3 ([\d.]+) M cycles, ([\d ]+) vertices, agreed end to end", text).groups()
+    st = sim_stats(tessim, [wuson, "--int-blocks", "2", "-L", "8", "--stall", "0.3"])
+    check("performance.md: cycles and vertices of the quoted co-simulation (the cycle model at its flags)", True,
+          stated_close(q[0], st["cycles"] / 1e6) and number(q[1]) == st["vertices_out"])
+
+
 def scene_claims(check):
     """docs/scenes.md's sizing paragraph against docs/results/scenes/study.json."""
     doc = json.loads((ROOT / "docs/results/scenes/study.json").read_text())
@@ -760,6 +816,7 @@ def run_checks(tessim: str, check, cached: bool = False):
     copies_rows(check, tessim)
     latency_picks(check, tessim)
     quoted_command_outputs(check, tessim)
+    performance_counts(check, tessim)
     scene_claims(check)
     core_claims(check)
     ge_fair_claims(check)
