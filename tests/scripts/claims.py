@@ -170,6 +170,10 @@ class Doc:
         for t in self.tokens_in(start, end):
             self.covered.setdefault(t[0], how)
 
+    def context(self, start: int, end: int) -> str:
+        """A number's surroundings on one line, for reports."""
+        return " ".join(self.text[max(0, start - 50):end + 30].split())
+
     def uncovered(self, section: str = None):
         lo, hi = self.section_bounds(section) if section else (0, len(self.text))
         return [t for t in self.tokens if t[0] not in self.covered and lo <= t[0] < hi]
@@ -489,7 +493,7 @@ def ratchet(docs: dict) -> list:
     for doc in docs.values():
         for start, end, tok in doc.uncovered():
             if not any(lo <= start < hi for lo, hi in held[doc.path]):
-                ctx = " ".join(doc.text[max(0, start - 50):end + 30].split())
+                ctx = doc.context(start, end)
                 problems.append(f"{doc.path}:{doc.line(start)}: {tok} is neither checked nor labelled … {ctx} …")
     return problems
 
@@ -519,15 +523,15 @@ def load_docs():
     return {p: Doc(p) for p in DOCS}
 
 
-def report(docs: dict, section: str = None, only: str = None, limit: int = 0) -> int:
+def report(docs: dict, section: str = None, only: str = None) -> int:
     total = 0
     for doc in docs.values():
         if only and only not in doc.path:
             continue
         left = doc.uncovered(section)
         total += len(left)
-        for start, end, tok in left[:limit or None]:
-            ctx = " ".join(doc.text[max(0, start - 50):end + 30].split())
+        for start, end, tok in left:
+            ctx = doc.context(start, end)
             print(f"{doc.path}:{doc.line(start)}: {tok}   … {ctx} …")
     return total
 

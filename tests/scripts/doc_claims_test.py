@@ -183,8 +183,7 @@ def cpg_matrix_builds(check):
 
 def stated_close(text: str, actual: float) -> bool:
     """Whether a number as written ('49.6', '0.105', '102') rounds from `actual`."""
-    decimals = len(text.split(".")[1]) if "." in text else 0
-    return abs(float(text) - actual) <= 0.5 * 10 ** -decimals + 1e-9
+    return claims.agrees(text, actual, 0)  # the one rounding rule of the claims
 
 
 def silhouette_fair(check):
